@@ -1,0 +1,30 @@
+# Shared compile settings for every Dermis target.
+function(dermis_set_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+                                           -Wno-sign-conversion)
+  if(DERMIS_WARNINGS_AS_ERRORS)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(DERMIS_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
+                                             -fno-sanitize-recover=all)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# dermis_add_library(NAME ALIAS SOURCES...): a static library dermis_NAME with alias dermis::NAME.
+function(dermis_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
+  add_library(dermis_${name} STATIC ${ARG_SOURCES})
+  add_library(dermis::${name} ALIAS dermis_${name})
+  target_include_directories(dermis_${name} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/sdk/include>
+    PRIVATE ${PROJECT_SOURCE_DIR}/sdk/src)
+  dermis_set_warnings(dermis_${name})
+endfunction()
+
+function(dermis_add_executable name)
+  cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  dermis_set_warnings(${name})
+endfunction()

@@ -1,0 +1,138 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Uniform n x n tessellation with shared edge and vertex samples (watertight by construction).
+#include "dermis/surface/tessellation.h"
+
+#include <limits>
+#include <string>
+
+#include "dermis/surface/surface_evaluator.h"
+
+namespace dermis {
+
+Status TessellationPattern::Build(const MeshTopology& topo, int level, TessellationPattern* out) {
+  if (level < 1) return Status::InvalidInput("tessellation level " + std::to_string(level) +
+                                             " must be at least 1");
+  if (level > 4096) return Status::InvalidInput("tessellation level " + std::to_string(level) +
+                                                " is too large (at most 4096)");
+  if (!topo.is_all_quads()) return Status::InvalidInput("tessellation needs an all-quad mesh");
+  const long long n = level;
+  const long long nv = topo.num_vertices(), ne = topo.num_edges(), nf = topo.num_faces();
+  const long long num_samples = nv + ne * (n - 1) + nf * (n - 1) * (n - 1);
+  const long long num_tris = nf * n * n * 2;
+  if (num_samples > std::numeric_limits<std::uint32_t>::max() ||
+      num_tris * 3 > static_cast<long long>(std::numeric_limits<std::int32_t>::max())) {
+    return Status::InvalidInput("tessellation at level " + std::to_string(level) + " would have " +
+                                std::to_string(num_samples) + " samples: too many");
+  }
+  TessellationPattern p;
+  p.level = level;
+  p.samples.resize(static_cast<size_t>(num_samples));
+  const double inv = 1.0 / static_cast<double>(n);
+  const std::uint32_t edge_base = static_cast<std::uint32_t>(nv);
+  const std::uint32_t face_base = static_cast<std::uint32_t>(nv + ne * (n - 1));
+
+  // Vertex samples, owned by ring face 0.
+  static const double kCornerU[4] = {0, 1, 1, 0}, kCornerV[4] = {0, 0, 1, 1};
+  for (Index v = 0; v < topo.num_vertices(); ++v) {
+    if (topo.valence(v) == 0) {
+      p.samples[v] = SampleLocation{kInvalidIndex, 0, 0};
+      continue;
+    }
+    const RingCorner rc = topo.ring(v, 0);
+    p.samples[v] = SampleLocation{rc.face, kCornerU[rc.corner], kCornerV[rc.corner]};
+  }
+  // Grid point (i, j) of face f to a global sample index.
+  auto grid_index = [&](Index f, long long i, long long j) -> std::uint32_t {
+    if ((i == 0 || i == n) && (j == 0 || j == n)) {
+      const int corner = i == 0 ? (j == 0 ? 0 : 3) : (j == 0 ? 1 : 2);
+      return static_cast<std::uint32_t>(topo.face_vertex(f, corner));
+    }
+    if (i > 0 && i < n && j > 0 && j < n) {
+      return static_cast<std::uint32_t>(face_base + (f * (n - 1) + (j - 1)) * (n - 1) + (i - 1));
+    }
+    int k;
+    long long t;  // steps from the half-edge's origin
+    if (j == 0) {
+      k = 0;
+      t = i;
+    } else if (i == n) {
+      k = 1;
+      t = j;
+    } else if (j == n) {
+      k = 2;
+      t = n - i;
+    } else {
+      k = 3;
+      t = n - j;
+    }
+    const Index h = topo.face_offset(f) + k;
+    const Index e = topo.halfedge_edge(h);
+    if (topo.edge_halfedge(e) != h) t = n - t;
+    return static_cast<std::uint32_t>(edge_base + e * (n - 1) + (t - 1));
+  };
+  // Edge samples, owned by the face of the canonical half-edge.
+  for (Index e = 0; e < topo.num_edges(); ++e) {
+    const Index h = topo.edge_halfedge(e);
+    const Index f = topo.halfedge_face(h);
+    const int k = static_cast<int>(h - topo.face_offset(f));
+    for (long long t = 1; t < n; ++t) {
+      const double a = static_cast<double>(t) * inv;
+      double u = 0, v = 0;
+      switch (k) {
+        case 0: u = a; v = 0; break;
+        case 1: u = 1; v = a; break;
+        case 2: u = 1.0 - a; v = 1; break;
+        default: u = 0; v = 1.0 - a; break;
+      }
+      // Snap to the exact grid value (i/n) that the owning face uses.
+      if (k == 2) u = static_cast<double>(n - t) * inv;
+      if (k == 3) v = static_cast<double>(n - t) * inv;
+      p.samples[edge_base + e * (n - 1) + (t - 1)] = SampleLocation{f, u, v};
+    }
+  }
+  // Face samples and triangles.
+  p.triangles.reserve(static_cast<size_t>(num_tris * 3));
+  for (Index f = 0; f < topo.num_faces(); ++f) {
+    for (long long j = 1; j < n; ++j)
+      for (long long i = 1; i < n; ++i)
+        p.samples[face_base + (f * (n - 1) + (j - 1)) * (n - 1) + (i - 1)] =
+            SampleLocation{f, static_cast<double>(i) * inv, static_cast<double>(j) * inv};
+    for (long long j = 0; j < n; ++j) {
+      for (long long i = 0; i < n; ++i) {
+        const std::uint32_t p00 = grid_index(f, i, j), p10 = grid_index(f, i + 1, j);
+        const std::uint32_t p11 = grid_index(f, i + 1, j + 1), p01 = grid_index(f, i, j + 1);
+        // Diagonal towards the nearest face corner: corners 0 and 2 -> p00-p11, 1 and 3 -> p10-p01.
+        const bool left = 2 * i + 1 < n, bottom = 2 * j + 1 < n;
+        const bool main_diagonal = left == bottom;
+        if (main_diagonal) {
+          p.triangles.insert(p.triangles.end(), {p00, p10, p11, p00, p11, p01});
+        } else {
+          p.triangles.insert(p.triangles.end(), {p00, p10, p01, p10, p11, p01});
+        }
+      }
+    }
+  }
+  *out = std::move(p);
+  return Status::Ok();
+}
+
+bool EvaluateSamples(const ManifoldDomain& domain, const LocalPatch* patches,
+                     const Displacement* displacement, const SampleLocation* samples,
+                     std::size_t count, Vec3* positions, Vec3* normals) {
+  bool ok = true;
+  for (std::size_t i = 0; i < count; ++i) {
+    SurfacePoint sp;
+    if (!EvaluateSurface(domain, patches, displacement, samples[i].face,
+                         Vec2(samples[i].u, samples[i].v), &sp)) {
+      ok = false;
+      positions[i] = Vec3(0.0);
+      if (normals) normals[i] = Vec3(0.0, 0.0, 1.0);
+      continue;
+    }
+    positions[i] = sp.position;
+    if (normals) normals[i] = sp.normal;
+  }
+  return ok;
+}
+
+}  // namespace dermis

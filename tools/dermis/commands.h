@@ -1,0 +1,18 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Subcommands of the dermis command-line tool. Exit codes: 0 ok, 1 invalid input or failure,
+// 2 usage error.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace dermis::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
+
+/// Registers `tessellate` on the app; `run` is set to the command's entry point.
+void AddTessellateCommand(CLI::App* app, std::function<int()>* run);
+
+}  // namespace dermis::cli

@@ -1,0 +1,32 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The dermis command-line tool.
+#include <cstdio>
+#include <functional>
+#include <string>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"dermis: displaced manifold surfaces (Yoon, \"A Surface Displaced from a Manifold\")",
+               "dermis"};
+  app.set_version_flag("--version", std::string("dermis ") + DERMIS_VERSION);
+  app.require_subcommand(1);
+  std::function<int()> run;
+  dermis::cli::AddTessellateCommand(&app, &run);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string sub;
+    for (const CLI::App* s : app.get_subcommands()) sub = " " + s->get_name();
+    std::fprintf(stderr, "dermis%s: error: %s\nRun 'dermis%s --help' for usage.\n", sub.c_str(),
+                 e.what(), sub.c_str());
+    return dermis::cli::kExitUsage;
+  }
+  return run ? run() : dermis::cli::kExitUsage;
+}
