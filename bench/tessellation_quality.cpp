@@ -47,8 +47,8 @@ int main(int argc, char** argv) {
   int status = 0;
   for (const std::string& in : inputs) {
     PolygonMesh mesh;
-    Status s = in.rfind("builtin:", 0) == 0 ? MakeBuiltinMesh(in.substr(8), &mesh)
-                                            : ReadObj(in, &mesh);
+    Status s =
+        in.rfind("builtin:", 0) == 0 ? MakeBuiltinMesh(in.substr(8), &mesh) : ReadObj(in, &mesh);
     if (s.ok()) CompactUnusedVertices(&mesh);
     ControlSurface cs;
     if (s.ok()) s = BuildControlSurface(mesh, DomainOptions{}, &cs);

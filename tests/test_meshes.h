@@ -47,8 +47,8 @@ class WavyDisplacement final : public Displacement {
   void Evaluate(Index v, Vec2 z, double* value, Vec2* gradient) const override {
     const double a = z.x + 0.3 * v, b = 1.3 * z.y - 0.1 * v;
     *value = amplitude_ * std::sin(a) * std::cos(b);
-    *gradient = Vec2(amplitude_ * std::cos(a) * std::cos(b),
-                     -1.3 * amplitude_ * std::sin(a) * std::sin(b));
+    *gradient =
+        Vec2(amplitude_ * std::cos(a) * std::cos(b), -1.3 * amplitude_ * std::sin(a) * std::sin(b));
   }
 
  private:

@@ -28,9 +28,8 @@ int main() {
   for (dermis::Index face = 0; face < 3; ++face) {
     dermis::SurfacePoint p;
     if (!dermis::EvaluateSurface(domain, patches.data(), nullptr, face, {0.3, 0.6}, &p)) return 1;
-    std::printf("face %d (0.3, 0.6): position (%.6f, %.6f, %.6f) normal (%.6f, %.6f, %.6f)\n",
-                face, p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y,
-                p.normal.z);
+    std::printf("face %d (0.3, 0.6): position (%.6f, %.6f, %.6f) normal (%.6f, %.6f, %.6f)\n", face,
+                p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z);
   }
   return 0;
 }

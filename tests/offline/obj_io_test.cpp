@@ -1,11 +1,11 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 #include "dermis/offline/obj_io.h"
 
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
-
-#include <unistd.h>
 
 #include "test_meshes.h"
 
@@ -22,7 +22,8 @@ Status Parse(const std::string& text, PolygonMesh* m = nullptr) {
 const char* kQuadHeader = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
 
 fs::path TempDir() {
-  const fs::path dir = fs::temp_directory_path() / ("dermis_obj_test_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("dermis_obj_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }
@@ -59,20 +60,19 @@ TEST_CASE("OBJ errors name the file, the line and the problem", "[obj]") {
       {std::string(kQuadHeader) + "f 1 x 3\n", "in.obj:5: 'x' is not a vertex index"},
       {"v 0 0 nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "in.obj:1: vertex coordinate 'nan' is not finite"},
       {"v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n", "in.obj:2: vertex coordinate 'inf' is not finite"},
-      {"v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n", "in.obj:2: vertex coordinate '1e999' is not finite"},
+      {"v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n",
+       "in.obj:2: vertex coordinate '1e999' is not finite"},
       {"v 0 0\n", "in.obj:1: a vertex needs 3 coordinates"},
       {"v 0 0 abc\n", "in.obj:1: 'abc' is not a number"},
       {"", "in.obj: no vertices"},
       {"# nothing\n\n", "in.obj: no vertices"},
       {std::string(kQuadHeader), "in.obj: no faces"},
       // Non-manifold edge: three triangles on edge 1-2.
-      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n",
-       "line 8"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n", "line 8"},
       // Inconsistent orientation.
       {std::string(kQuadHeader) + "v 2 0 0\nf 1 2 3\nf 1 2 5\n", "same direction"},
       // Non-manifold vertex (bow tie).
-      {"v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n",
-       "non-manifold vertex"},
+      {"v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n", "non-manifold vertex"},
   };
   for (const Bad& b : cases) {
     INFO(b.text);

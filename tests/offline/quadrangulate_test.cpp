@@ -39,7 +39,8 @@ TEST_CASE("triangles, n-gons and mixed meshes are split once into quads", "[quad
     for (Index f = 0; f < m.num_faces(); ++f) {
       CHECK(out.valence(m.num_vertices() + f) == m.face_size(f));
       Vec3 c(0.0);
-      for (Index h = m.face_offsets[f]; h < m.face_offsets[f + 1]; ++h) c += m.positions[m.face_vertices[h]];
+      for (Index h = m.face_offsets[f]; h < m.face_offsets[f + 1]; ++h)
+        c += m.positions[m.face_vertices[h]];
       CHECK(glm::length(q.positions[m.num_vertices() + f] - c / double(m.face_size(f))) < 1e-15);
     }
     for (Index e = 0; e < in.num_edges(); ++e) {

@@ -10,7 +10,8 @@ using namespace dermis;
 TEST_CASE("C-infinity step matches the reference values of manifold.md section 4", "[blend]") {
   const double t[5] = {0.1, 0.25, 0.5, 0.75, 0.9};
   const double ref[5] = {0.998619, 0.886948, 0.5, 0.113052, 0.001381};
-  for (int i = 0; i < 5; ++i) CHECK(BlendStep(BlendType::kCInfinity, t[i]) == Approx(ref[i]).margin(1e-6));
+  for (int i = 0; i < 5; ++i)
+    CHECK(BlendStep(BlendType::kCInfinity, t[i]) == Approx(ref[i]).margin(1e-6));
   CHECK(BlendStep(BlendType::kC2, 0.25) == Approx(0.9296875).margin(1e-12));
   CHECK(BlendStep(BlendType::kC2, 0.5) == Approx(0.5).margin(1e-15));
 }

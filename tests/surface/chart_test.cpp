@@ -16,8 +16,8 @@ std::vector<ChartParams> AllCharts() {
   std::vector<ChartParams> charts;
   for (ChartType type : kTypes) {
     for (int k = 3; k <= 16; ++k) charts.push_back(MakeChartParams(k, VertexKind::kInterior, type));
-    for (VertexKind kind : {VertexKind::kCrease, VertexKind::kConvexCorner,
-                            VertexKind::kConcaveCorner}) {
+    for (VertexKind kind :
+         {VertexKind::kCrease, VertexKind::kConvexCorner, VertexKind::kConcaveCorner}) {
       for (int k = 1; k <= 8; ++k) charts.push_back(MakeChartParams(k, kind, type));
     }
   }
@@ -37,8 +37,7 @@ TEST_CASE("characteristic-map exponents match the table of manifold.md section 2
   }
   CHECK(MakeChartParams(4, VertexKind::kInterior, ChartType::kCharacteristicMap).p == 1.0);
   CHECK(MakeChartParams(3, VertexKind::kCrease, ChartType::kFullyComplex).q == Approx(2.0 / 3));
-  CHECK(MakeChartParams(2, VertexKind::kConcaveCorner, ChartType::kFullyComplex).q ==
-        Approx(1.5));
+  CHECK(MakeChartParams(2, VertexKind::kConcaveCorner, ChartType::kFullyComplex).q == Approx(1.5));
 }
 
 TEST_CASE("corner maps and relative corner maps are consistent", "[chart]") {

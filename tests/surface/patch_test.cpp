@@ -14,8 +14,8 @@ struct Case {
 };
 std::vector<Case> Cases() {
   std::vector<Case> out;
-  for (ChartType type : {ChartType::kCharacteristicMap, ChartType::kFullyComplex,
-                         ChartType::kIsodistance}) {
+  for (ChartType type :
+       {ChartType::kCharacteristicMap, ChartType::kFullyComplex, ChartType::kIsodistance}) {
     for (int k = 3; k <= 16; ++k) {
       out.push_back({MakeChartParams(k, VertexKind::kInterior, type),
                      "interior K=" + std::to_string(k) + " type " + std::to_string(int(type))});
@@ -23,8 +23,8 @@ std::vector<Case> Cases() {
     for (VertexKind kind :
          {VertexKind::kCrease, VertexKind::kConvexCorner, VertexKind::kConcaveCorner}) {
       for (int k = 1; k <= 8; ++k) {
-        out.push_back({MakeChartParams(k, kind, type), "boundary kind " + std::to_string(int(kind)) +
-                                                           " K=" + std::to_string(k)});
+        out.push_back({MakeChartParams(k, kind, type),
+                       "boundary kind " + std::to_string(int(kind)) + " K=" + std::to_string(k)});
       }
     }
   }
@@ -67,8 +67,10 @@ TEST_CASE("every patch fit reproduces linear functions exactly", "[patch]") {
     const LocalPatch p = FitRing(c.chart, op, [&](Vec2 z) { return v0 + z.x * a + z.y * b; });
     for (int m = 0; m < 3; ++m)
       for (int n = 0; n < 3; ++n) {
-        const Vec3 expect = m == 0 && n == 0 ? v0 : m == 1 && n == 0 ? a
-                                                : m == 0 && n == 1 ? b : Vec3(0.0);
+        const Vec3 expect = m == 0 && n == 0   ? v0
+                            : m == 1 && n == 0 ? a
+                            : m == 0 && n == 1 ? b
+                                               : Vec3(0.0);
         REQUIRE(glm::length(p.coeff[m][n] - expect) < 1e-10);
       }
   }
@@ -93,7 +95,8 @@ TEST_CASE("full-rank fits reproduce bi-quadratics; valence 3 and 4 interpolate t
     const LocalPatch fit = FitRing(c.chart, op, [&](Vec2 z) { return eval(truth, z); });
     if (rank == 8) {
       for (int m = 0; m < 3; ++m)
-        for (int n = 0; n < 3; ++n) REQUIRE(glm::length(fit.coeff[m][n] - truth.coeff[m][n]) < 1e-9);
+        for (int n = 0; n < 3; ++n)
+          REQUIRE(glm::length(fit.coeff[m][n] - truth.coeff[m][n]) < 1e-9);
     }
     if (c.chart.kind == VertexKind::kInterior && c.chart.valence <= 4) {
       // Random ring positions (not from a bi-quadratic) are interpolated exactly.
@@ -105,7 +108,8 @@ TEST_CASE("full-rank fits reproduce bi-quadratics; valence 3 and 4 interpolate t
         if (q == Vec2(0.0)) return Vec3(0.5);
         return values[k++ % values.size()];
       });
-      for (size_t i = 0; i < z.size(); ++i) REQUIRE(glm::length(eval(interp, z[i]) - values[i]) < 1e-9);
+      for (size_t i = 0; i < z.size(); ++i)
+        REQUIRE(glm::length(eval(interp, z[i]) - values[i]) < 1e-9);
     }
   }
 }
@@ -129,7 +133,8 @@ TEST_CASE("a refit after moving control vertices equals a fit from scratch", "[p
       for (size_t k = 0; k < z.size(); ++k) {
         PatchJet jet;
         EvaluatePatch(refit[v], z[k], &jet);
-        const double mono = std::pow(z[k].x, kPatchMonomials[j][0]) * std::pow(z[k].y, kPatchMonomials[j][1]);
+        const double mono =
+            std::pow(z[k].x, kPatchMonomials[j][0]) * std::pow(z[k].y, kPatchMonomials[j][1]);
         dot += mono * (moved[ring[k]] - jet.p);
       }
       REQUIRE(glm::length(dot) < 1e-9);

@@ -1,8 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-#include "dermis/surface/surface_evaluator.h"
-
 #include <catch2/catch.hpp>
 
+#include "dermis/surface/surface_evaluator.h"
 #include "test_meshes.h"
 
 using namespace dermis;
@@ -12,8 +11,10 @@ namespace {
 // Meshes covering interior valences 3..12 and boundary creases and corners.
 std::vector<std::pair<std::string, PolygonMesh>> TestMeshes(bool perturb) {
   std::vector<std::pair<std::string, PolygonMesh>> out;
-  for (int k = 3; k <= 12; ++k) out.push_back({"prism" + std::to_string(k), test::Builtin("prism" + std::to_string(k))});
-  for (const char* name : {"cube", "torus", "house", "grid", "octahedron"}) out.push_back({name, test::Builtin(name)});
+  for (int k = 3; k <= 12; ++k)
+    out.push_back({"prism" + std::to_string(k), test::Builtin("prism" + std::to_string(k))});
+  for (const char* name : {"cube", "torus", "house", "grid", "octahedron"})
+    out.push_back({name, test::Builtin(name)});
   for (int k : {1, 2, 3, 5}) {
     if (k > 1) out.push_back({"half fan " + std::to_string(k), test::FanMesh(k, M_PI, 0.3)});
     out.push_back({"corner fan " + std::to_string(k), test::FanMesh(k, 0.5 * M_PI, 0.3)});
@@ -40,8 +41,7 @@ SurfacePoint Eval(const ControlSurface& cs, const Displacement* d, Index f, Vec2
 
 }  // namespace
 
-TEST_CASE("the surface interpolates every control vertex from every incident face",
-          "[surface]") {
+TEST_CASE("the surface interpolates every control vertex from every incident face", "[surface]") {
   for (const auto& [name, mesh] : TestMeshes(true)) {
     INFO(name);
     const ControlSurface cs = test::Build(mesh);
@@ -51,7 +51,8 @@ TEST_CASE("the surface interpolates every control vertex from every incident fac
     for (Index f = 0; f < t.num_faces(); ++f) {
       for (int a = 0; a < 4; ++a) {
         const SurfacePoint p = Eval(cs, nullptr, f, corners[a]);
-        REQUIRE(glm::length(p.position - cs.control.positions[t.face_vertex(f, a)]) <= 1e-12 * diag);
+        REQUIRE(glm::length(p.position - cs.control.positions[t.face_vertex(f, a)]) <=
+                1e-12 * diag);
         // The normal at a vertex is the patch normal c10 x c01 (Yoon).
         const LocalPatch& lp = cs.patches[t.face_vertex(f, a)];
         const Vec3 n = glm::normalize(glm::cross(lp.coeff[1][0], lp.coeff[0][1]));
@@ -113,8 +114,8 @@ TEST_CASE("analytic derivatives match finite differences", "[surface]") {
       DomainOptions o;
       o.blend_type = blend;
       const ControlSurface cs = test::Build(mesh, o);
-      for (const Displacement* d : {static_cast<const Displacement*>(nullptr),
-                                    static_cast<const Displacement*>(&wavy)}) {
+      for (const Displacement* d :
+           {static_cast<const Displacement*>(nullptr), static_cast<const Displacement*>(&wavy)}) {
         INFO(name << " blend " << int(blend) << (d ? " displaced" : " domain"));
         for (Index f = 0; f < cs.domain->num_faces(); ++f) {
           for (int i = 0; i < 6; ++i) {
@@ -123,9 +124,11 @@ TEST_CASE("analytic derivatives match finite differences", "[surface]") {
             REQUIRE(p.face_derivatives_valid);
             const double h = 1e-6;
             const Vec3 fu = (Eval(cs, d, f, uv + Vec2(h, 0)).position -
-                             Eval(cs, d, f, uv - Vec2(h, 0)).position) / (2 * h);
+                             Eval(cs, d, f, uv - Vec2(h, 0)).position) /
+                            (2 * h);
             const Vec3 fv = (Eval(cs, d, f, uv + Vec2(0, h)).position -
-                             Eval(cs, d, f, uv - Vec2(0, h)).position) / (2 * h);
+                             Eval(cs, d, f, uv - Vec2(0, h)).position) /
+                            (2 * h);
             const double scale = 1.0 + glm::length(p.du) + glm::length(p.dv);
             REQUIRE(glm::length(p.du - fu) < 2e-6 * scale);
             REQUIRE(glm::length(p.dv - fv) < 2e-6 * scale);
@@ -138,10 +141,10 @@ TEST_CASE("analytic derivatives match finite differences", "[surface]") {
   }
 }
 
-TEST_CASE("position and normal on every control edge agree from both faces",
-          "[surface][edge]") {
+TEST_CASE("position and normal on every control edge agree from both faces", "[surface][edge]") {
   const test::WavyDisplacement wavy(0.05);
-  const double ts[] = {0.0, 0.01, 0.05, 0.1, 0.125, 0.2, 0.3, 0.5, 0.7, 0.8, 0.875, 0.9, 0.95, 0.99, 1.0};
+  const double ts[] = {0.0, 0.01, 0.05,  0.1, 0.125, 0.2,  0.3, 0.5,
+                       0.7, 0.8,  0.875, 0.9, 0.95,  0.99, 1.0};
   for (const auto& [name, mesh] : TestMeshes(true)) {
     for (ChartType type : {ChartType::kCharacteristicMap, ChartType::kFullyComplex}) {
       DomainOptions o;
@@ -149,8 +152,8 @@ TEST_CASE("position and normal on every control edge agree from both faces",
       const ControlSurface cs = test::Build(mesh, o);
       const MeshTopology& topo = cs.domain->topology();
       const double diag = BoundingBoxDiagonal(cs.control.positions);
-      for (const Displacement* d : {static_cast<const Displacement*>(nullptr),
-                                    static_cast<const Displacement*>(&wavy)}) {
+      for (const Displacement* d :
+           {static_cast<const Displacement*>(nullptr), static_cast<const Displacement*>(&wavy)}) {
         INFO(name << " type " << int(type) << (d ? " displaced" : " domain"));
         double worst_pos = 0.0, worst_angle = 0.0;
         for (Index h = 0; h < topo.num_halfedges(); ++h) {

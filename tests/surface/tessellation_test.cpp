@@ -50,7 +50,8 @@ TEST_CASE("tessellations of closed meshes are watertight and reproduce the input
       // Outward normals: the triangles agree with the evaluated normals (once the triangles
       // resolve the surface).
       for (size_t k = 0; level >= 8 && k < t.pattern.triangles.size(); k += 3) {
-        const Vec3 a = t.positions[t.pattern.triangles[k]], b = t.positions[t.pattern.triangles[k + 1]],
+        const Vec3 a = t.positions[t.pattern.triangles[k]],
+                   b = t.positions[t.pattern.triangles[k + 1]],
                    c = t.positions[t.pattern.triangles[k + 2]];
         REQUIRE(glm::dot(glm::cross(b - a, c - a), t.normals[t.pattern.triangles[k]]) > 0.0);
       }
@@ -74,10 +75,12 @@ TEST_CASE("the largest dihedral angle halves when the level doubles (no crease)"
           "[tessellation][smoothness]") {
   for (const char* name : {"cube", "house", "prism7"}) {
     const ControlSurface cs = test::Build(test::Builtin(name));
-    const double d8 = ComputeTriangleMeshMetrics(Tessellate(cs, 8).positions,
-                                                 Tessellate(cs, 8).pattern.triangles).max_dihedral;
+    const double d8 =
+        ComputeTriangleMeshMetrics(Tessellate(cs, 8).positions, Tessellate(cs, 8).pattern.triangles)
+            .max_dihedral;
     const Tess t16 = Tessellate(cs, 16);
-    const double d16 = ComputeTriangleMeshMetrics(t16.positions, t16.pattern.triangles).max_dihedral;
+    const double d16 =
+        ComputeTriangleMeshMetrics(t16.positions, t16.pattern.triangles).max_dihedral;
     INFO(name << ": level 8 " << d8 << " rad, level 16 " << d16 << " rad");
     CHECK(d16 / d8 < 0.65);
     CHECK(d16 / d8 > 0.35);

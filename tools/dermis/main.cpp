@@ -7,8 +7,9 @@
 #include "commands.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"dermis: displaced manifold surfaces (Yoon, \"A Surface Displaced from a Manifold\")",
-               "dermis"};
+  CLI::App app{
+      "dermis: displaced manifold surfaces (Yoon, \"A Surface Displaced from a Manifold\")",
+      "dermis"};
   app.set_version_flag("--version", std::string("dermis ") + DERMIS_VERSION);
   app.require_subcommand(1);
   std::function<int()> run;

@@ -45,11 +45,13 @@ int RunTessellate(const TessellateArgs& a) {
   if (!s.ok()) return Fail(s);
   const Index dropped = CompactUnusedVertices(&mesh);
   if (dropped > 0 && !a.quiet) {
-    std::fprintf(stderr, "dermis tessellate: warning: %s: %d vertices are used by no face and were "
-                 "ignored\n", mesh.source_name.c_str(), dropped);
+    std::fprintf(stderr,
+                 "dermis tessellate: warning: %s: %d vertices are used by no face and were "
+                 "ignored\n",
+                 mesh.source_name.c_str(), dropped);
   }
   DomainOptions options;
-  options.chart_type = a.chart == "complex" ? ChartType::kFullyComplex
+  options.chart_type = a.chart == "complex"       ? ChartType::kFullyComplex
                        : a.chart == "isodistance" ? ChartType::kIsodistance
                                                   : ChartType::kCharacteristicMap;
   options.blend_type = a.blend == "c2" ? BlendType::kC2 : BlendType::kCInfinity;

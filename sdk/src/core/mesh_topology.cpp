@@ -88,14 +88,13 @@ Status MeshTopology::Build(Index num_vertices, const std::vector<Index>& face_of
     for (Index h = begin; h < end; ++h) {
       const Index v = face_vertices[h];
       if (v < 0 || v >= num_vertices) {
-        return Status::InvalidInput(face_name(f) + " uses vertex index " +
-                                    std::to_string(v) + ", out of range (mesh has " +
-                                    std::to_string(num_vertices) + " vertices)");
+        return Status::InvalidInput(face_name(f) + " uses vertex index " + std::to_string(v) +
+                                    ", out of range (mesh has " + std::to_string(num_vertices) +
+                                    " vertices)");
       }
       for (Index g = begin; g < h; ++g) {
         if (face_vertices[g] == v) {
-          return Status::InvalidInput(face_name(f) + " uses " + vertex_name(v) +
-                                      " more than once");
+          return Status::InvalidInput(face_name(f) + " uses " + vertex_name(v) + " more than once");
         }
       }
       t.halfedge_face_[h] = f;
@@ -158,8 +157,7 @@ Status MeshTopology::Build(Index num_vertices, const std::vector<Index>& face_of
       }
     }
     if (boundary_starts > 1) {
-      return Status::InvalidInput(vertex_name(v) + " joins " +
-                                  std::to_string(boundary_starts) +
+      return Status::InvalidInput(vertex_name(v) + " joins " + std::to_string(boundary_starts) +
                                   " separate fans of faces (non-manifold vertex)");
     }
     t.vertex_boundary_[v] = boundary_starts == 1 ? 1 : 0;

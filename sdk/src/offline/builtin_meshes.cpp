@@ -79,7 +79,8 @@ Status MakeBuiltinMesh(const std::string& name, PolygonMesh* mesh) {
     }
     auto id = [&](int i, int j) { return static_cast<Index>((i % nu) * nv + (j % nv)); };
     for (int i = 0; i < nu; ++i)
-      for (int j = 0; j < nv; ++j) m.AddFace({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+      for (int j = 0; j < nv; ++j)
+        m.AddFace({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
   } else if (name.rfind("prism", 0) == 0 && name.size() > 5) {
     const std::string digits = name.substr(5);
     if (digits.size() > 2 || !std::all_of(digits.begin(), digits.end(), ::isdigit)) {

@@ -33,8 +33,8 @@ std::vector<VertexKind> ClassifyVertices(const MeshTopology& topo,
     for (int i = 0; i < k; ++i) {
       const RingCorner rc = topo.ring(v, i);
       const Index n = topo.face_vertex(rc.face, (rc.corner + 1) % topo.face_size(rc.face));
-      const Index p = topo.face_vertex(rc.face, (rc.corner + topo.face_size(rc.face) - 1) %
-                                                    topo.face_size(rc.face));
+      const Index p = topo.face_vertex(
+          rc.face, (rc.corner + topo.face_size(rc.face) - 1) % topo.face_size(rc.face));
       sum += Angle(positions[n] - positions[v], positions[p] - positions[v]);
     }
     if (sum < 0.75 * kPi) {
@@ -71,8 +71,8 @@ Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>
                                     std::to_string(k) + " (at least 3 needed)");
       }
       std::vector<double> op;
-      Status s = ComputePatchFitOperator(
-          MakeChartParams(k, data.vertex_kind[v], options.chart_type), &op);
+      Status s =
+          ComputePatchFitOperator(MakeChartParams(k, data.vertex_kind[v], options.chart_type), &op);
       if (!s.ok()) return s;
       const Index id = static_cast<Index>(data.operator_offsets.size()) - 1;
       data.operator_values.insert(data.operator_values.end(), op.begin(), op.end());

@@ -116,8 +116,8 @@ Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mes
           return error(statement_line, "'" + std::string(tokens[1 + k]) + "' is not a number");
         }
         if (!std::isfinite(x)) {
-          return error(statement_line, "vertex coordinate '" + std::string(tokens[1 + k]) +
-                                           "' is not finite");
+          return error(statement_line,
+                       "vertex coordinate '" + std::string(tokens[1 + k]) + "' is not finite");
         }
         p[k] = x;
       }
@@ -148,8 +148,8 @@ Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mes
         const Index v = static_cast<Index>(value - 1);
         for (Index prev : face) {
           if (prev == v) {
-            return error(statement_line, "the face uses vertex " + std::to_string(value) +
-                                             " more than once");
+            return error(statement_line,
+                         "the face uses vertex " + std::to_string(value) + " more than once");
           }
         }
         face.push_back(v);
@@ -165,7 +165,8 @@ Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mes
     // control mesh needs and is skipped.
   }
   if (m.positions.empty()) return Status::InvalidInput(name + ": no vertices (empty mesh)");
-  if (m.num_faces() == 0) return Status::InvalidInput(name + ": no faces (a control mesh needs polygons)");
+  if (m.num_faces() == 0)
+    return Status::InvalidInput(name + ": no faces (a control mesh needs polygons)");
   for (Index f = 0; f < m.num_faces(); ++f) {
     for (Index h = m.face_offsets[f]; h < m.face_offsets[f + 1]; ++h) {
       if (m.face_vertices[h] >= m.num_vertices()) {

@@ -90,8 +90,7 @@ Status ComputePatchFitOperator(const ChartParams& chart, std::vector<double>* op
   while (r < sigma.size() && sigma(r) > tol) ++r;
   if (r == 0) return Status::Internal("patch fit: the ring positions are degenerate");
   // Minimum-norm least-squares solution operator M^+ (8 x n).
-  Eigen::MatrixXd pinv = svd.matrixV().leftCols(r) *
-                         sigma.head(r).cwiseInverse().asDiagonal() *
+  Eigen::MatrixXd pinv = svd.matrixV().leftCols(r) * sigma.head(r).cwiseInverse().asDiagonal() *
                          svd.matrixU().leftCols(r).transpose();
   if (r < 8) {
     // Among all minimisers c0 + N y pick the one of least thin-plate energy:

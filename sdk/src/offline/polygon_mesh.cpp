@@ -16,7 +16,8 @@ void PolygonMesh::AddFace(const std::vector<Index>& vertices) {
 
 std::string PolygonMesh::FaceName(Index f) const {
   std::string s = "face " + std::to_string(f);
-  if (static_cast<size_t>(f) < face_lines.size()) s += " (line " + std::to_string(face_lines[f]) + ")";
+  if (static_cast<size_t>(f) < face_lines.size())
+    s += " (line " + std::to_string(face_lines[f]) + ")";
   return s;
 }
 

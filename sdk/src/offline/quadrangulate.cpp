@@ -34,8 +34,8 @@ Status Quadrangulate(const PolygonMesh& mesh, QuadMesh* out) {
   }
   for (Index e = 0; e < topo.num_edges(); ++e) {
     const Index h = topo.edge_halfedge(e);
-    q.positions.push_back(0.5 * (mesh.positions[topo.halfedge_origin(h)] +
-                                 mesh.positions[topo.halfedge_dest(h)]));
+    q.positions.push_back(
+        0.5 * (mesh.positions[topo.halfedge_origin(h)] + mesh.positions[topo.halfedge_dest(h)]));
   }
   const Index edge_base = nv + nf;
   for (Index f = 0; f < nf; ++f) {

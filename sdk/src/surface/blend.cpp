@@ -33,7 +33,8 @@ void CubicC(double x, double* c, double* dc) {
     *c = x * x * x / 6.0;
     *dc = 0.5 * x * x;
   } else if (x <= 2.0) {
-    *c = 1.0 / 6.0 + (3.0 * (x * x - 1.0) - 3.0 * (x - 1.0) - (2.0 / 3.0) * (x * x * x - 1.0)) / 2.0;
+    *c =
+        1.0 / 6.0 + (3.0 * (x * x - 1.0) - 3.0 * (x - 1.0) - (2.0 / 3.0) * (x * x * x - 1.0)) / 2.0;
     *dc = 3.0 * x - 1.5 - x * x;
   } else {
     const double y = 3.0 - x;

@@ -10,10 +10,12 @@
 namespace dermis {
 
 Status TessellationPattern::Build(const MeshTopology& topo, int level, TessellationPattern* out) {
-  if (level < 1) return Status::InvalidInput("tessellation level " + std::to_string(level) +
-                                             " must be at least 1");
-  if (level > 4096) return Status::InvalidInput("tessellation level " + std::to_string(level) +
-                                                " is too large (at most 4096)");
+  if (level < 1)
+    return Status::InvalidInput("tessellation level " + std::to_string(level) +
+                                " must be at least 1");
+  if (level > 4096)
+    return Status::InvalidInput("tessellation level " + std::to_string(level) +
+                                " is too large (at most 4096)");
   if (!topo.is_all_quads()) return Status::InvalidInput("tessellation needs an all-quad mesh");
   const long long n = level;
   const long long nv = topo.num_vertices(), ne = topo.num_edges(), nf = topo.num_faces();
@@ -79,10 +81,22 @@ Status TessellationPattern::Build(const MeshTopology& topo, int level, Tessellat
       const double a = static_cast<double>(t) * inv;
       double u = 0, v = 0;
       switch (k) {
-        case 0: u = a; v = 0; break;
-        case 1: u = 1; v = a; break;
-        case 2: u = 1.0 - a; v = 1; break;
-        default: u = 0; v = 1.0 - a; break;
+        case 0:
+          u = a;
+          v = 0;
+          break;
+        case 1:
+          u = 1;
+          v = a;
+          break;
+        case 2:
+          u = 1.0 - a;
+          v = 1;
+          break;
+        default:
+          u = 0;
+          v = 1.0 - a;
+          break;
       }
       // Snap to the exact grid value (i/n) that the owning face uses.
       if (k == 2) u = static_cast<double>(n - t) * inv;

@@ -3,12 +3,11 @@
 /// \brief Basic vector types shared by every Dermis module.
 #pragma once
 
+#include <cstdint>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
-
-#include <cstdint>
 
 namespace dermis {
 

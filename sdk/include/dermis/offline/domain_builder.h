@@ -16,9 +16,9 @@ namespace dermis {
 
 /// A control mesh with its manifold domain and the patches fitted to its rest positions.
 struct ControlSurface {
-  QuadMesh control;                         ///< The all-quad control mesh (rest positions).
-  std::unique_ptr<ManifoldDomain> domain;   ///< Charts, blending and patch operators.
-  std::vector<LocalPatch> patches;          ///< Fitted to control.positions.
+  QuadMesh control;                        ///< The all-quad control mesh (rest positions).
+  std::unique_ptr<ManifoldDomain> domain;  ///< Charts, blending and patch operators.
+  std::vector<LocalPatch> patches;         ///< Fitted to control.positions.
 };
 
 /// Chooses the chart kind of every vertex of an all-quad topology: interior vertices get full

@@ -38,11 +38,11 @@ enum class VertexKind : std::uint8_t {
 
 /// Parameters of one vertex chart.
 struct ChartParams {
-  int valence = 4;                       ///< Number of faces around the vertex (K).
+  int valence = 4;  ///< Number of faces around the vertex (K).
   VertexKind kind = VertexKind::kInterior;
-  double sector = 6.283185307179586;     ///< Theta: total angle of the chart's image.
-  double p = 1.0;                        ///< Radial exponent.
-  double q = 1.0;                        ///< Angular exponent, q = 2 Theta / (pi K).
+  double sector = 6.283185307179586;  ///< Theta: total angle of the chart's image.
+  double p = 1.0;                     ///< Radial exponent.
+  double q = 1.0;                     ///< Angular exponent, q = 2 Theta / (pi K).
 };
 
 /// lambda_K = [5 + cos(2pi/K) + cos(pi/K) sqrt(2 (9 + cos(2pi/K)))] / 16 (K >= 3).

@@ -34,7 +34,7 @@ struct DomainOptions {
 /// Everything a ManifoldDomain is made of. Filled by the offline builder
 /// (dermis/offline/domain_builder.h) or by a file reader, then validated by Create().
 struct DomainData {
-  MeshTopology topology;              ///< All quads, every vertex used by a face.
+  MeshTopology topology;  ///< All quads, every vertex used by a face.
   DomainOptions options;
   std::vector<VertexKind> vertex_kind;  ///< One per vertex; kInterior exactly for interior ones.
   /// Patch-fit operators, stored once per distinct (valence, kind) and shared.
