@@ -8,7 +8,7 @@ using namespace dermis;
 
 namespace {
 
-// Meshes covering interior valences 3..12 and boundary creases and corners.
+// Meshes covering interior valences 3..16 and boundary creases and corners.
 std::vector<std::pair<std::string, PolygonMesh>> TestMeshes(bool perturb) {
   std::vector<std::pair<std::string, PolygonMesh>> out;
   for (int k = 3; k <= 12; ++k)
