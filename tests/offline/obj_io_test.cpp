@@ -125,6 +125,18 @@ TEST_CASE("OBJ writing is exact and atomic", "[obj]") {
   fs::remove_all(dir);
 }
 
+TEST_CASE("polygon OBJ round trip keeps vertices and faces exactly", "[obj]") {
+  const fs::path dir = TempDir();
+  const PolygonMesh house = test::Builtin("house");
+  REQUIRE(WritePolygonObj((dir / "house.obj").string(), house).ok());
+  PolygonMesh back;
+  REQUIRE(ReadObj((dir / "house.obj").string(), &back).ok());
+  CHECK(back.positions == house.positions);
+  CHECK(back.face_offsets == house.face_offsets);
+  CHECK(back.face_vertices == house.face_vertices);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("unused vertices are compacted away", "[obj]") {
   PolygonMesh m;
   REQUIRE(Parse("v 9 9 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 8 8 8\nf 2 3 4\n", &m).ok());

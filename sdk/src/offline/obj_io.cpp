@@ -52,6 +52,19 @@ void AppendDouble(std::string* out, double x) {
   out->append(buf, res.ptr);
 }
 
+// One "PREFIXx y z" line per vector.
+void AppendVectors(std::string* out, const char* prefix, const std::vector<Vec3>& vectors) {
+  for (const Vec3& p : vectors) {
+    *out += prefix;
+    AppendDouble(out, p.x);
+    *out += ' ';
+    AppendDouble(out, p.y);
+    *out += ' ';
+    AppendDouble(out, p.z);
+    *out += '\n';
+  }
+}
+
 void AppendUint(std::string* out, std::uint64_t x) {
   char buf[24];
   const auto res = std::to_chars(buf, buf + sizeof(buf), x);
@@ -206,24 +219,8 @@ Status WriteObj(const std::string& path, const std::vector<Vec3>& positions,
   std::string out;
   out.reserve(positions.size() * 100 + triangles.size() * 12);
   if (!header_comment.empty()) out += "# " + header_comment + "\n";
-  for (const Vec3& p : positions) {
-    out += "v ";
-    AppendDouble(&out, p.x);
-    out += ' ';
-    AppendDouble(&out, p.y);
-    out += ' ';
-    AppendDouble(&out, p.z);
-    out += '\n';
-  }
-  for (const Vec3& n : normals) {
-    out += "vn ";
-    AppendDouble(&out, n.x);
-    out += ' ';
-    AppendDouble(&out, n.y);
-    out += ' ';
-    AppendDouble(&out, n.z);
-    out += '\n';
-  }
+  AppendVectors(&out, "v ", positions);
+  AppendVectors(&out, "vn ", normals);
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
     out += 'f';
     for (int k = 0; k < 3; ++k) {
@@ -242,15 +239,7 @@ Status WriteObj(const std::string& path, const std::vector<Vec3>& positions,
 
 Status WritePolygonObj(const std::string& path, const PolygonMesh& mesh) {
   std::string out;
-  for (const Vec3& p : mesh.positions) {
-    out += "v ";
-    AppendDouble(&out, p.x);
-    out += ' ';
-    AppendDouble(&out, p.y);
-    out += ' ';
-    AppendDouble(&out, p.z);
-    out += '\n';
-  }
+  AppendVectors(&out, "v ", mesh.positions);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     out += 'f';
     for (Index h = mesh.face_offsets[f]; h < mesh.face_offsets[f + 1]; ++h) {
