@@ -75,9 +75,8 @@ TEST_CASE("the largest dihedral angle halves when the level doubles (no crease)"
           "[tessellation][smoothness]") {
   for (const char* name : {"cube", "house", "prism7"}) {
     const ControlSurface cs = test::Build(test::Builtin(name));
-    const double d8 =
-        ComputeTriangleMeshMetrics(Tessellate(cs, 8).positions, Tessellate(cs, 8).pattern.triangles)
-            .max_dihedral;
+    const Tess t8 = Tessellate(cs, 8);
+    const double d8 = ComputeTriangleMeshMetrics(t8.positions, t8.pattern.triangles).max_dihedral;
     const Tess t16 = Tessellate(cs, 16);
     const double d16 =
         ComputeTriangleMeshMetrics(t16.positions, t16.pattern.triangles).max_dihedral;

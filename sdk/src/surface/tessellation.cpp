@@ -78,29 +78,10 @@ Status TessellationPattern::Build(const MeshTopology& topo, int level, Tessellat
     const Index f = topo.halfedge_face(h);
     const int k = static_cast<int>(h - topo.face_offset(f));
     for (long long t = 1; t < n; ++t) {
-      const double a = static_cast<double>(t) * inv;
-      double u = 0, v = 0;
-      switch (k) {
-        case 0:
-          u = a;
-          v = 0;
-          break;
-        case 1:
-          u = 1;
-          v = a;
-          break;
-        case 2:
-          u = 1.0 - a;
-          v = 1;
-          break;
-        default:
-          u = 0;
-          v = 1.0 - a;
-          break;
-      }
-      // Snap to the exact grid value (i/n) that the owning face uses.
-      if (k == 2) u = static_cast<double>(n - t) * inv;
-      if (k == 3) v = static_cast<double>(n - t) * inv;
+      // Exactly the grid values (i/n, j/n) that the owning face uses for this point.
+      const double a = static_cast<double>(t) * inv, b = static_cast<double>(n - t) * inv;
+      const double u = k == 0 ? a : k == 1 ? 1.0 : k == 2 ? b : 0.0;
+      const double v = k == 0 ? 0.0 : k == 1 ? a : k == 2 ? 1.0 : b;
       p.samples[edge_base + e * (n - 1) + (t - 1)] = SampleLocation{f, u, v};
     }
   }
