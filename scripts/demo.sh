@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets everything up and runs the main job on built-in data: the manifold surface of built-in
-# control meshes (a house of quads and triangles, a torus, a 7-sided prism), tessellated to OBJ.
+# control meshes (a house of quads and triangles, a torus, a 7-sided prism), tessellated to OBJ,
+# and a fit of a dense mesh to a displaced surface (.dsurf + JSON report).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -8,4 +9,10 @@ mkdir -p out/demo
 for mesh in house torus prism7; do
   build/bin/dermis tessellate --builtin "$mesh" -o "out/demo/$mesh.obj" --level 16
 done
+# Fit: a dense mesh (the torus tessellated at level 12) -> automatic control mesh +
+# displacements (.dsurf) with an error report, then the fitted surface tessellated back.
+build/bin/dermis tessellate --builtin torus -o out/demo/torus_dense.obj --level 12 -q
+build/bin/dermis fit out/demo/torus_dense.obj -o out/demo/torus_fit.dsurf --control-vertices 200 \
+  --report out/demo/torus_fit.json
+build/bin/dermis tessellate out/demo/torus_fit.dsurf -o out/demo/torus_fit.obj --level 8
 echo "demo: wrote $(ls out/demo/*.obj | tr '\n' ' ')(open them in any OBJ viewer)"

@@ -34,6 +34,7 @@ class Lcg {
     state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
     return static_cast<double>(state_ >> 11) * (1.0 / 9007199254740992.0);
   }
+  double Uniform(double lo, double hi) { return lo + (hi - lo) * Next(); }
 
  private:
   std::uint64_t state_;

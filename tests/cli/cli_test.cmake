@@ -64,3 +64,36 @@ expect_run(2 "\\-\\-help' for usage" ${DERMIS} tessellate -o ${WORK}/x.obj)
 expect_run(2 "" ${DERMIS} frobnicate)
 expect_run(0 "dermis [0-9]" ${DERMIS} --version)
 expect_run(0 "tessellate" ${DERMIS} tessellate --help)
+
+# dermis fit: a dense mesh made by the tool itself, then its .dsurf tessellated back.
+expect_run(0 "" ${DERMIS} tessellate --builtin torus -o ${WORK}/dense_torus.obj --level 6 -q)
+expect_run(0 "wrote" ${DERMIS} fit ${WORK}/dense_torus.obj -o ${WORK}/fit/torus.dsurf
+           --control-vertices 150 --threads 2 --report ${WORK}/fit/report.json)
+file(READ ${WORK}/fit/report.json report)
+foreach(key points points_dropped control_vertices control_faces coefficients mean rms max
+        unoptimized_mean holdout_mean holdout_max hausdorff_percent_diagonal control_mesh
+        projection_optimization displacement total)
+  string(FIND "${report}" "\"${key}\"" at)
+  if(at LESS 0)
+    message(FATAL_ERROR "report.json has no \"${key}\":\n${report}")
+  endif()
+endforeach()
+expect_run(0 "displacement levels 2 of" ${DERMIS} tessellate ${WORK}/fit/torus.dsurf
+           -o ${WORK}/fit/torus_l2.obj --level 4 --displacement-levels 2)
+expect_run(0 "" ${DERMIS} tessellate ${WORK}/fit/torus.dsurf -o ${WORK}/fit/torus.obj -q)
+# Bad fit inputs: exit 1, a message naming the file, nothing written.
+expect_run(1 "missing.obj" ${DERMIS} fit ${WORK}/missing.obj -o ${WORK}/bad1.dsurf)
+file(WRITE ${WORK}/empty.obj "# nothing\n")
+expect_run(1 "empty.obj" ${DERMIS} fit ${WORK}/empty.obj -o ${WORK}/bad2.dsurf)
+file(WRITE ${WORK}/cloud.obj "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n")
+expect_run(1 "control-mesh" ${DERMIS} fit ${WORK}/cloud.obj -o ${WORK}/bad3.dsurf)
+expect_run(1 "control-vertices" ${DERMIS} fit ${WORK}/dense_torus.obj -o ${WORK}/bad4.dsurf
+           --control-vertices 1000000)
+file(WRITE ${WORK}/bad.dsurf "DSURF but not really")
+expect_run(1 "bad.dsurf" ${DERMIS} tessellate ${WORK}/bad.dsurf -o ${WORK}/bad5.obj)
+foreach(f bad1.dsurf bad2.dsurf bad3.dsurf bad4.dsurf bad5.obj)
+  if(EXISTS ${WORK}/${f})
+    message(FATAL_ERROR "a failed command left ${f} behind")
+  endif()
+endforeach()
+expect_run(2 "" ${DERMIS} fit ${WORK}/dense_torus.obj)

@@ -15,4 +15,7 @@ constexpr int kExitUsage = 2;
 /// Registers `tessellate` on the app; `run` is set to the command's entry point.
 void AddTessellateCommand(CLI::App* app, std::function<int()>* run);
 
+/// Registers `fit`.
+void AddFitCommand(CLI::App* app, std::function<int()>* run);
+
 }  // namespace dermis::cli

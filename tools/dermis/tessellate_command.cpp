@@ -1,5 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // dermis tessellate: polygon OBJ (or built-in mesh) -> manifold domain surface -> OBJ.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "dermis/offline/builtin_meshes.h"
 #include "dermis/offline/domain_builder.h"
 #include "dermis/offline/obj_io.h"
+#include "dermis/surface/dsurf.h"
 #include "dermis/surface/tessellation.h"
 
 namespace dermis::cli {
@@ -24,12 +26,69 @@ struct TessellateArgs {
   std::string chart = "characteristic";
   std::string blend = "cinf";
   double blend_lb = DomainOptions{}.blend_lb;
+  int displacement_levels = -1;
   bool quiet = false;
 };
+
+bool IsDsurf(const std::string& path) {
+  return path.size() >= 6 && path.compare(path.size() - 6, 6, ".dsurf") == 0;
+}
 
 int Fail(const Status& s) {
   std::fprintf(stderr, "dermis tessellate: error: %s\n", s.message().c_str());
   return kExitFailure;
+}
+
+Status WriteTessellation(const TessellateArgs& a, const ManifoldDomain& domain,
+                         const LocalPatch* patches, const Displacement* displacement,
+                         const std::string& header, std::size_t* vertices, std::size_t* triangles) {
+  TessellationPattern pattern;
+  Status s = TessellationPattern::Build(domain.topology(), a.level, &pattern);
+  if (!s.ok()) return s;
+  std::vector<Vec3> positions(pattern.samples.size()), normals(pattern.samples.size());
+  if (!EvaluateSamples(domain, patches, displacement, pattern.samples.data(),
+                       pattern.samples.size(), positions.data(), normals.data())) {
+    return Status::Internal("a tessellation sample could not be evaluated");
+  }
+  const std::filesystem::path out_path(a.output);
+  if (out_path.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(out_path.parent_path(), ec);
+  }
+  *vertices = positions.size();
+  *triangles = pattern.triangles.size() / 3;
+  return WriteObj(a.output, positions, normals, pattern.triangles, header);
+}
+
+int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_point t0) {
+  DisplacedSurface surface;
+  Status s = ReadDsurf(a.input, &surface);
+  if (!s.ok()) return Fail(s);
+  std::vector<LocalPatch> patches(surface.rest_positions.size());
+  surface.domain->FitPatches(surface.rest_positions.data(), patches.data());
+  const int available = surface.displacement ? surface.displacement->max_levels() : 0;
+  const int levels = a.displacement_levels < 0 ? available : a.displacement_levels;
+  std::unique_ptr<TruncatedDisplacement> truncated;
+  if (surface.displacement) {
+    truncated = std::make_unique<TruncatedDisplacement>(surface.displacement.get(), levels);
+  }
+  std::size_t nv = 0, nt = 0;
+  s = WriteTessellation(a, *surface.domain, patches.data(), truncated.get(),
+                        "dermis tessellate " + a.input + " --level " + std::to_string(a.level) +
+                            " --displacement-levels " + std::to_string(levels),
+                        &nv, &nt);
+  if (!s.ok()) return Fail(s);
+  if (!a.quiet) {
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr,
+                 "dermis tessellate: %s: %d control vertices, %d control quads, displacement "
+                 "levels %d of %d -> %zu vertices, %zu triangles at level %d in %.2f s\nwrote %s\n",
+                 a.input.c_str(), surface.domain->num_vertices(), surface.domain->num_faces(),
+                 std::min(levels, available), available, nv, nt, a.level, seconds,
+                 a.output.c_str());
+  }
+  return kExitOk;
 }
 
 int RunTessellate(const TessellateArgs& a) {
@@ -40,6 +99,7 @@ int RunTessellate(const TessellateArgs& a) {
                  "Run 'dermis tessellate --help' for usage.\n");
     return kExitUsage;
   }
+  if (IsDsurf(a.input)) return RunTessellateDsurf(a, t0);
   PolygonMesh mesh;
   Status s = a.builtin.empty() ? ReadObj(a.input, &mesh) : MakeBuiltinMesh(a.builtin, &mesh);
   if (!s.ok()) return Fail(s);
@@ -59,21 +119,10 @@ int RunTessellate(const TessellateArgs& a) {
   ControlSurface surface;
   s = BuildControlSurface(mesh, options, &surface);
   if (!s.ok()) return Fail(s);
-  TessellationPattern pattern;
-  s = TessellationPattern::Build(surface.domain->topology(), a.level, &pattern);
-  if (!s.ok()) return Fail(s);
-  std::vector<Vec3> positions(pattern.samples.size()), normals(pattern.samples.size());
-  if (!EvaluateSamples(*surface.domain, surface.patches.data(), nullptr, pattern.samples.data(),
-                       pattern.samples.size(), positions.data(), normals.data())) {
-    return Fail(Status::Internal("a tessellation sample could not be evaluated"));
-  }
-  const std::filesystem::path out_path(a.output);
-  if (out_path.has_parent_path()) {
-    std::error_code ec;
-    std::filesystem::create_directories(out_path.parent_path(), ec);
-  }
-  s = WriteObj(a.output, positions, normals, pattern.triangles,
-               "dermis tessellate " + mesh.source_name + " --level " + std::to_string(a.level));
+  std::size_t nv = 0, nt = 0;
+  s = WriteTessellation(
+      a, *surface.domain, surface.patches.data(), nullptr,
+      "dermis tessellate " + mesh.source_name + " --level " + std::to_string(a.level), &nv, &nt);
   if (!s.ok()) return Fail(s);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -82,8 +131,7 @@ int RunTessellate(const TessellateArgs& a) {
                  "dermis tessellate: %s: %d input vertices, %d control vertices, %d control quads "
                  "-> %zu vertices, %zu triangles at level %d in %.2f s\nwrote %s\n",
                  mesh.source_name.c_str(), mesh.num_vertices(), surface.domain->num_vertices(),
-                 surface.domain->num_faces(), positions.size(), pattern.triangles.size() / 3,
-                 a.level, seconds, a.output.c_str());
+                 surface.domain->num_faces(), nv, nt, a.level, seconds, a.output.c_str());
   }
   return kExitOk;
 }
@@ -95,7 +143,8 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   CLI::App* cmd = app->add_subcommand(
       "tessellate",
       "Build the manifold surface of a polygon control mesh and write it tessellated as OBJ.");
-  cmd->add_option("INPUT", args->input, "Control mesh: a polygon OBJ (triangles, quads, n-gons)");
+  cmd->add_option("INPUT", args->input,
+                  "Control mesh: a polygon OBJ (triangles, quads, n-gons), or a fitted .dsurf");
   std::string names;
   for (const std::string& n : BuiltinMeshNames()) names += (names.empty() ? "" : ", ") + n;
   cmd->add_option("--builtin", args->builtin, "Use a built-in control mesh instead: " + names);
@@ -113,6 +162,9 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--blend-lb", args->blend_lb, "Blending window start lb in (0, 0.5); ub = 1 - lb")
       ->check(CLI::Range(1e-6, 0.499999))
       ->capture_default_str();
+  cmd->add_option("--displacement-levels", args->displacement_levels,
+                  "For a .dsurf: displacement levels to use (0: domain surface; default all)")
+      ->check(CLI::Range(0, kMaxBsplineLevels));
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   cmd->callback([run, args]() { *run = [args]() { return RunTessellate(*args); }; });
 }

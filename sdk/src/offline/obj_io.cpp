@@ -73,7 +73,8 @@ void AppendUint(std::string* out, std::uint64_t x) {
 
 }  // namespace
 
-Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mesh) {
+Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mesh,
+                bool require_faces) {
   PolygonMesh m;
   m.source_name = name;
   auto error = [&](int line, const std::string& what) {
@@ -178,7 +179,7 @@ Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mes
     // control mesh needs and is skipped.
   }
   if (m.positions.empty()) return Status::InvalidInput(name + ": no vertices (empty mesh)");
-  if (m.num_faces() == 0)
+  if (m.num_faces() == 0 && require_faces)
     return Status::InvalidInput(name + ": no faces (a control mesh needs polygons)");
   for (Index f = 0; f < m.num_faces(); ++f) {
     for (Index h = m.face_offsets[f]; h < m.face_offsets[f + 1]; ++h) {
@@ -193,7 +194,7 @@ Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mes
   return Status::Ok();
 }
 
-Status ReadObj(const std::string& path, PolygonMesh* mesh) {
+Status ReadObj(const std::string& path, PolygonMesh* mesh, bool require_faces) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     return Status::IoError(path + ": is a directory, not an OBJ file");
@@ -207,7 +208,7 @@ Status ReadObj(const std::string& path, PolygonMesh* mesh) {
   if (text.find('\0') != std::string::npos) {
     return Status::InvalidInput(path + ": not a text OBJ file (contains NUL bytes)");
   }
-  return ParseObj(text, path, mesh);
+  return ParseObj(text, path, mesh, require_faces);
 }
 
 Status WriteObj(const std::string& path, const std::vector<Vec3>& positions,

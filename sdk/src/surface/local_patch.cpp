@@ -2,6 +2,8 @@
 // Bi-quadratic local patch of Yoon, Eq. 1: P(x,y) = [x^2 x 1] C [y^2 y 1]^T.
 #include "dermis/surface/local_patch.h"
 
+#include <cmath>
+
 namespace dermis {
 
 void EvaluatePatch(const LocalPatch& patch, Vec2 z, PatchJet* out) {
@@ -24,6 +26,24 @@ void EvaluatePatch(const LocalPatch& patch, Vec2 z, PatchJet* out) {
     }
   }
   *out = PatchJet{p, px, py, pxx, pxy, pyy};
+}
+
+void EvaluatePatchFrame(const LocalPatch& patch, Vec2 z, PatchFrame* out) {
+  PatchJet j;
+  EvaluatePatch(patch, z, &j);
+  PatchFrame f{j.p, j.px, j.py, patch.fallback_normal, Vec3(0.0), Vec3(0.0)};
+  const Vec3 n = glm::cross(j.px, j.py);
+  const double len = std::sqrt(glm::dot(n, n));
+  const double scale = std::sqrt(glm::dot(j.px, j.px) * glm::dot(j.py, j.py));
+  if (len > 1e-14 * scale && std::isfinite(len)) {
+    f.n = n / len;
+    // d(n/|n|) = (dn - N (N . dn)) / |n|, dn from the patch's second derivatives.
+    const Vec3 nx = glm::cross(j.pxx, j.py) + glm::cross(j.px, j.pxy);
+    const Vec3 ny = glm::cross(j.pxy, j.py) + glm::cross(j.px, j.pyy);
+    f.nx = (nx - f.n * glm::dot(f.n, nx)) / len;
+    f.ny = (ny - f.n * glm::dot(f.n, ny)) / len;
+  }
+  *out = f;
 }
 
 }  // namespace dermis

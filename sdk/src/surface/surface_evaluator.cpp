@@ -19,32 +19,14 @@ Vec3 NormalizeOr(Vec3 n, Vec3 fallback) {
 
 void EvaluateChartSurface(const LocalPatch& patch, const Displacement* displacement, Index vertex,
                           Vec2 z, Vec3* position, Vec3* dx, Vec3* dy) {
-  PatchJet j;
-  EvaluatePatch(patch, z, &j);
-  if (!displacement) {
-    *position = j.p;
-    *dx = j.px;
-    *dy = j.py;
-    return;
-  }
+  PatchFrame f;
+  EvaluatePatchFrame(patch, z, &f);
   double d = 0.0;
   Vec2 g(0.0);
-  displacement->Evaluate(vertex, z, &d, &g);
-  const Vec3 n = glm::cross(j.px, j.py);
-  const double len = std::sqrt(glm::dot(n, n));
-  const double scale = std::sqrt(glm::dot(j.px, j.px) * glm::dot(j.py, j.py));
-  Vec3 unit = patch.fallback_normal, unit_x(0.0), unit_y(0.0);
-  if (len > 1e-14 * scale && std::isfinite(len)) {
-    unit = n / len;
-    // d(n/|n|) = (dn - N (N . dn)) / |n|, dn from the patch's second derivatives.
-    const Vec3 nx = glm::cross(j.pxx, j.py) + glm::cross(j.px, j.pxy);
-    const Vec3 ny = glm::cross(j.pxy, j.py) + glm::cross(j.px, j.pyy);
-    unit_x = (nx - unit * glm::dot(unit, nx)) / len;
-    unit_y = (ny - unit * glm::dot(unit, ny)) / len;
-  }
-  *position = j.p + d * unit;
-  *dx = j.px + g.x * unit + d * unit_x;
-  *dy = j.py + g.y * unit + d * unit_y;
+  if (displacement) displacement->Evaluate(vertex, z, &d, &g);
+  *position = f.p + d * f.n;
+  *dx = f.px + g.x * f.n + d * f.nx;
+  *dy = f.py + g.y * f.n + d * f.ny;
 }
 
 bool EvaluateSurface(const ManifoldDomain& domain, const LocalPatch* patches,

@@ -22,10 +22,12 @@ namespace dermis {
 /// backslash, comments. Other statements (vt, vn, o, g, s, usemtl, mtllib, l, p, ...) are
 /// ignored. Errors are "NAME:LINE: problem". Faces are checked for range and repeated
 /// indices here; call ValidatePolygonMesh() for manifoldness.
-Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mesh);
+/// A file without faces is an error unless `require_faces` is false (a point cloud).
+Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mesh,
+                bool require_faces = true);
 
 /// Reads and parses an OBJ file. An unreadable file gives a kIoError naming the path.
-Status ReadObj(const std::string& path, PolygonMesh* mesh);
+Status ReadObj(const std::string& path, PolygonMesh* mesh, bool require_faces = true);
 
 /// Writes a triangle mesh with per-vertex normals ("v", "vn", "f a//a b//b c//c") to `path`
 /// atomically: the file appears complete or not at all. Numbers are written in the shortest

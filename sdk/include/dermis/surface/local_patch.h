@@ -24,6 +24,18 @@ struct PatchJet {
 /// Evaluates the patch and its first and second derivatives at chart point z.
 void EvaluatePatch(const LocalPatch& patch, Vec2 z, PatchJet* out);
 
+/// A local patch, its unit normal and their first derivatives at one chart point: the moving
+/// frame along which a displacement is applied (paper Eq. 3).
+struct PatchFrame {
+  Vec3 p, px, py;  ///< Position and d/dx, d/dy.
+  /// Unit normal (px x py)/|px x py| and its derivatives; the patch's fallback_normal and zero
+  /// derivatives where the patch is degenerate.
+  Vec3 n, nx, ny;
+};
+
+/// Evaluates the patch's frame at chart point z.
+void EvaluatePatchFrame(const LocalPatch& patch, Vec2 z, PatchFrame* out);
+
 /// The 8 free monomials x^m y^n of the patch, in the row order used by patch-fit operators:
 /// (1,0) (0,1) (2,0) (1,1) (0,2) (2,1) (1,2) (2,2).
 constexpr int kPatchMonomials[8][2] = {{1, 0}, {0, 1}, {2, 0}, {1, 1},

@@ -1,0 +1,191 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// dermis fit: dense mesh or point cloud -> control mesh + displacements (.dsurf), with a JSON
+// report of the fit's errors and timings (paper section 4, Table 1).
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "commands.h"
+#include "dermis/offline/atomic_file.h"
+#include "dermis/offline/obj_io.h"
+#include "dermis/offline/point_input.h"
+#include "dermis/offline/surface_fit.h"
+#include "dermis/surface/dsurf.h"
+
+namespace dermis::cli {
+namespace {
+
+struct FitArgs {
+  std::string input;
+  std::string output;
+  std::string control_mesh;
+  std::string report;
+  int control_vertices = 540;
+  int levels = DisplacementFitOptions{}.max_levels;
+  double density = DisplacementFitOptions{}.density;
+  double holdout = 0.1;
+  int threads = 0;
+  bool quiet = false;
+};
+
+int Fail(const Status& s) {
+  std::fprintf(stderr, "dermis fit: error: %s\n", s.message().c_str());
+  return kExitFailure;
+}
+
+void MakeParent(const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(p.parent_path(), ec);
+  }
+}
+
+nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
+  nlohmann::ordered_json j;
+  j["input"] = a.input;
+  j["output"] = a.output;
+  j["points"] = r.points;
+  j["points_dropped"] = r.points_dropped;
+  j["points_fitted"] = r.points_fitted;
+  j["points_holdout"] = r.points_holdout;
+  j["points_outside"] = r.points_outside;
+  j["points_not_converged"] = r.points_not_converged;
+  j["control_vertices"] = r.control_vertices;
+  j["control_faces"] = r.control_faces;
+  j["coefficients"] = r.coefficients;
+  j["finest_coefficients"] = r.finest_coefficients;
+  j["levels"] = r.max_levels;
+  j["threads"] = r.threads;
+  j["unit"] = "data scaled so its bounding box's largest side is 1";
+  j["scale"] = r.scale;
+  nlohmann::ordered_json e;
+  e["mean"] = r.error.mean;
+  e["rms"] = r.error.rms;
+  e["max"] = r.error.max;
+  e["unoptimized_mean"] = r.error.unoptimized_mean;
+  e["closest_mean"] = r.error.closest_mean;
+  e["holdout_mean"] = r.error.holdout_mean;
+  e["holdout_max"] = r.error.holdout_max;
+  if (r.error.has_hausdorff) {
+    e["hausdorff"] = r.error.hausdorff;
+    e["hausdorff_percent_diagonal"] = r.error.hausdorff_percent_diagonal;
+  } else {
+    e["hausdorff"] = nullptr;
+    e["hausdorff_percent_diagonal"] = nullptr;
+  }
+  j["error"] = e;
+  nlohmann::ordered_json t;
+  t["control_mesh"] = r.seconds.control_mesh;
+  t["projection_optimization"] = r.seconds.projection_optimization;
+  t["displacement"] = r.seconds.displacement;
+  t["total"] = r.seconds.total;
+  t["metrics"] = r.seconds.metrics;
+  j["seconds"] = t;
+  return j;
+}
+
+int RunFit(const FitArgs& a) {
+  PolygonMesh mesh;
+  Index dropped = 0;
+  Status s = ReadFitInput(a.input, &mesh, &dropped);
+  if (!s.ok()) return Fail(s);
+  PolygonMesh control;
+  if (!a.control_mesh.empty()) {
+    s = ReadObj(a.control_mesh, &control);
+    if (!s.ok()) return Fail(s);
+  } else if (mesh.num_faces() == 0) {
+    return Fail(Status::InvalidInput(a.input + ": a point cloud (no faces) needs --control-mesh"));
+  }
+  FitInput input;
+  input.points = mesh.positions;
+  input.mesh = mesh.num_faces() > 0 ? &mesh : nullptr;
+  input.control = a.control_mesh.empty() ? nullptr : &control;
+  input.points_dropped = dropped;
+  FitOptions options;
+  options.control_vertices = a.control_vertices;
+  options.displacement.max_levels = a.levels;
+  options.displacement.density = a.density;
+  options.holdout = a.holdout;
+  options.threads = a.threads;
+  const bool tty = !a.quiet && isatty(STDERR_FILENO);
+  if (tty) {
+    options.progress = [](const std::string& stage) {
+      std::fprintf(stderr, "\rdermis fit: %-40s", stage.c_str());
+      std::fflush(stderr);
+    };
+  }
+  FittedSurface fitted;
+  FitReport report;
+  s = FitSurface(input, options, &fitted, &report);
+  if (tty) std::fprintf(stderr, "\r%-60s\r", "");
+  if (!s.ok()) return Fail(s);
+  const std::string bytes = SerializeDsurf(
+      *fitted.surface.domain, fitted.surface.control.positions.data(), fitted.displacement.get());
+  MakeParent(a.output);
+  s = WriteFileAtomically(a.output, bytes);
+  if (!s.ok()) return Fail(s);
+  if (!a.report.empty()) {
+    MakeParent(a.report);
+    s = WriteFileAtomically(a.report, ReportJson(a, report).dump(2) + "\n");
+    if (!s.ok()) return Fail(s);
+  }
+  if (!a.quiet) {
+    std::fprintf(stderr,
+                 "dermis fit: %s: %lld points (%lld dropped, %lld held out), %lld control "
+                 "vertices, %lld coefficients\n"
+                 "  E1 mean %.3g rms %.3g max %.3g (unoptimized %.3g), held-out mean %.3g, "
+                 "Hausdorff %.3g%% of diagonal\n"
+                 "  %.2f s (control mesh %.2f, projection+optimisation %.2f, displacement %.2f)"
+                 "\nwrote %s\n",
+                 a.input.c_str(), static_cast<long long>(report.points),
+                 static_cast<long long>(report.points_dropped),
+                 static_cast<long long>(report.points_holdout),
+                 static_cast<long long>(report.control_vertices),
+                 static_cast<long long>(report.coefficients), report.error.mean, report.error.rms,
+                 report.error.max, report.error.unoptimized_mean, report.error.holdout_mean,
+                 report.error.hausdorff_percent_diagonal, report.seconds.total,
+                 report.seconds.control_mesh, report.seconds.projection_optimization,
+                 report.seconds.displacement, a.output.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddFitCommand(CLI::App* app, std::function<int()>* run) {
+  auto args = std::make_shared<FitArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "fit", "Fit a displaced manifold surface to a dense mesh or point cloud; write .dsurf.");
+  cmd->add_option("INPUT", args->input, "Dense mesh or point cloud: .obj or .ply")->required();
+  cmd->add_option("-o,--output", args->output, "Output .dsurf")->required();
+  cmd->add_option("--control-vertices", args->control_vertices,
+                  "Control vertices of the automatic control mesh")
+      ->check(CLI::Range(8, 10000000))
+      ->capture_default_str();
+  cmd->add_option("--control-mesh", args->control_mesh,
+                  "Use this polygon OBJ as the control mesh (as is)");
+  cmd->add_option("--levels", args->levels, "Most displacement levels per chart")
+      ->check(CLI::Range(1, kMaxBsplineLevels))
+      ->capture_default_str();
+  cmd->add_option("--density", args->density,
+                  "Finest lattice cells per side per sqrt(points in the chart); 0: all charts "
+                  "get --levels")
+      ->check(CLI::Range(0.0, 64.0))
+      ->capture_default_str();
+  cmd->add_option("--holdout", args->holdout, "Fraction of points held out to measure error")
+      ->check(CLI::Range(0.0, 0.9))
+      ->capture_default_str();
+  cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
+  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+  cmd->callback([run, args]() { *run = [args]() { return RunFit(*args); }; });
+}
+
+}  // namespace dermis::cli
