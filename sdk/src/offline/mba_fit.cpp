@@ -49,6 +49,20 @@ void RefineBsplineLattice(const double* coarse, int m, double* fine) {
   }
 }
 
+namespace {
+
+// Cell (i, j) of chart point z on a level with m cells per side and the basis weights there.
+void Locate(Vec2 z, double half_extent, int m, int* i, int* j, double bs[4], double bt[4]) {
+  const double scale = m / (2.0 * half_extent);
+  double s = 0.0, t = 0.0, unused[4];
+  BsplineCell((z.x + half_extent) * scale, m, i, &s);
+  BsplineCell((z.y + half_extent) * scale, m, j, &t);
+  CubicBsplineBasis(s, bs, unused);
+  CubicBsplineBasis(t, bt, unused);
+}
+
+}  // namespace
+
 void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count,
                           double half_extent, int num_levels, std::vector<double>* lattices,
                           std::vector<double>* residuals) {
@@ -57,18 +71,14 @@ void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count
   for (int level = 0; level < num_levels; ++level) {
     const int m = 1 << level;
     const int stride = m + 3;
-    const double scale = m / (2.0 * half_extent);
     const std::size_t size = static_cast<std::size_t>(stride) * stride;
     delta.assign(size, 0.0);
     omega.assign(size, 0.0);
     // BA: each point's minimum-norm wish phi_c = w_kl r / sum w^2, averaged with weights w^2.
     for (std::size_t c = 0; c < count; ++c) {
       int i = 0, j = 0;
-      double s = 0.0, t = 0.0, bs[4], bt[4], unused[4];
-      BsplineCell((z[c].x + half_extent) * scale, m, &i, &s);
-      BsplineCell((z[c].y + half_extent) * scale, m, &j, &t);
-      CubicBsplineBasis(s, bs, unused);
-      CubicBsplineBasis(t, bt, unused);
+      double bs[4], bt[4];
+      Locate(z[c], half_extent, m, &i, &j, bs, bt);
       double sum_w2 = 0.0;
       for (int l = 0; l < 4; ++l) {
         for (int k = 0; k < 4; ++k) sum_w2 += (bs[k] * bt[l]) * (bs[k] * bt[l]);
@@ -91,11 +101,8 @@ void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count
     // Residuals of this level's function.
     for (std::size_t c = 0; c < count; ++c) {
       int i = 0, j = 0;
-      double s = 0.0, t = 0.0, bs[4], bt[4], unused[4];
-      BsplineCell((z[c].x + half_extent) * scale, m, &i, &s);
-      BsplineCell((z[c].y + half_extent) * scale, m, &j, &t);
-      CubicBsplineBasis(s, bs, unused);
-      CubicBsplineBasis(t, bt, unused);
+      double bs[4], bt[4];
+      Locate(z[c], half_extent, m, &i, &j, bs, bt);
       double f = 0.0;
       for (int l = 0; l < 4; ++l) {
         const double* row = phi.data() + static_cast<std::size_t>(j + l) * stride + i;

@@ -11,24 +11,13 @@
 #include <sstream>
 
 #include "dermis/offline/atomic_file.h"
+#include "text_tokens.h"
 
 namespace dermis {
 namespace {
 
-bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-
-// Splits a line into whitespace-separated tokens.
-void Tokenize(std::string_view line, std::vector<std::string_view>* tokens) {
-  tokens->clear();
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && IsSpace(line[i])) ++i;
-    size_t j = i;
-    while (j < line.size() && !IsSpace(line[j])) ++j;
-    if (j > i) tokens->push_back(line.substr(i, j - i));
-    i = j;
-  }
-}
+using text::IsSpace;
+using text::Tokenize;
 
 bool ParseDouble(std::string_view s, double* out) {
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);

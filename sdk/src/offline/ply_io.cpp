@@ -19,6 +19,8 @@
 #include <utility>
 #include <vector>
 
+#include "text_tokens.h"
+
 namespace dermis {
 namespace {
 
@@ -97,20 +99,8 @@ struct Header {
   int face_list_property = -1;          // Index of vertex_indices in the face element.
 };
 
-bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-
-// Splits a line into whitespace-separated tokens.
-void Tokenize(std::string_view line, std::vector<std::string_view>* tokens) {
-  tokens->clear();
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && IsSpace(line[i])) ++i;
-    size_t j = i;
-    while (j < line.size() && !IsSpace(line[j])) ++j;
-    if (j > i) tokens->push_back(line.substr(i, j - i));
-    i = j;
-  }
-}
+using text::IsSpace;
+using text::Tokenize;
 
 // Returns the line that starts at *pos (without its '\n') and moves *pos past the '\n'.
 std::string_view NextLine(std::string_view text, size_t* pos) {
