@@ -92,7 +92,7 @@ TEST_CASE("fit: the common-displacement solve inverts Q + delta N") {
   for (int n = 0; n < 200; ++n) {
     const Index face = static_cast<Index>(rng.Next() * domain.num_faces());
     const Vec2 uv(rng.Uniform(0.02, 0.98), rng.Uniform(0.02, 0.98));
-    const int a = uv.x <= 0.5 ? (uv.y <= 0.5 ? 0 : 3) : (uv.y <= 0.5 ? 1 : 2);
+    const int a = DominantCorner(uv);
     const Index v = domain.topology().face_vertex(face, a);
     DomainJet jet;
     REQUIRE(EvaluateDomainJet(domain, s.patches.data(), v, domain.FaceToChart(face, a, uv), &jet));
@@ -110,7 +110,7 @@ TEST_CASE("fit: the common-displacement solve inverts Q + delta N") {
     REQUIRE(sol.residual <= 1e-12);
     CHECK(sol.delta == Approx(delta).margin(1e-9));
     DomainJet check;
-    const int b = sol.uv.x <= 0.5 ? (sol.uv.y <= 0.5 ? 0 : 3) : (sol.uv.y <= 0.5 ? 1 : 2);
+    const int b = DominantCorner(sol.uv);
     REQUIRE(EvaluateDomainJet(domain, s.patches.data(), domain.topology().face_vertex(sol.face, b),
                               domain.FaceToChart(sol.face, b, sol.uv), &check));
     CHECK(glm::length(check.q - jet.q) < 1e-9);
@@ -127,7 +127,7 @@ TEST_CASE("fit: domain jet derivatives match finite differences") {
   for (int n = 0; n < 100; ++n) {
     const Index face = static_cast<Index>(rng.Next() * domain.num_faces());
     const Vec2 uv(rng.Uniform(0.1, 0.9), rng.Uniform(0.1, 0.9));
-    const int a = uv.x <= 0.5 ? (uv.y <= 0.5 ? 0 : 3) : (uv.y <= 0.5 ? 1 : 2);
+    const int a = DominantCorner(uv);
     const Index v = domain.topology().face_vertex(face, a);
     const Vec2 z = domain.FaceToChart(face, a, uv);
     DomainJet j, jx0, jx1, jy0, jy1;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "dermis/core/file_bytes.h"
 #include "dermis/offline/atomic_file.h"
 #include "text_tokens.h"
 
@@ -184,16 +185,9 @@ Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mes
 }
 
 Status ReadObj(const std::string& path, PolygonMesh* mesh, bool require_faces) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    return Status::IoError(path + ": is a directory, not an OBJ file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::IoError(path + ": cannot open for reading: " + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return Status::IoError(path + ": read error");
-  const std::string text = ss.str();
+  std::string text;
+  const Status read = ReadFileBytes(path, "an OBJ file", &text);
+  if (!read.ok()) return read;
   if (text.find('\0') != std::string::npos) {
     return Status::InvalidInput(path + ": not a text OBJ file (contains NUL bytes)");
   }

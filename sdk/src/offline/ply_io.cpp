@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "dermis/core/file_bytes.h"
 #include "text_tokens.h"
 
 namespace dermis {
@@ -613,16 +614,10 @@ Status ParsePly(std::string_view bytes, const std::string& name, PolygonMesh* me
 }
 
 Status ReadPly(const std::string& path, PolygonMesh* mesh) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    return Status::IoError(path + ": is a directory, not a PLY file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::IoError(path + ": cannot open for reading: " + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return Status::IoError(path + ": read error");
-  return ParsePly(ss.str(), path, mesh);
+  std::string bytes;
+  const Status read = ReadFileBytes(path, "a PLY file", &bytes);
+  if (!read.ok()) return read;
+  return ParsePly(bytes, path, mesh);
 }
 
 }  // namespace dermis

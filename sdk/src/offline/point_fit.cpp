@@ -83,7 +83,7 @@ void FitPoints(const ControlSurface& surface, const std::vector<Vec3>& points,
             const CommonDisplacementSolution s = SolveCommonDisplacement(
                 domain, patches, p, v, z, SignedDistance(patches[v], z, p), options.tolerance);
             if (!s.converged) continue;
-            const int c = s.uv.x <= 0.5 ? (s.uv.y <= 0.5 ? 0 : 3) : (s.uv.y <= 0.5 ? 1 : 2);
+            const int c = DominantCorner(s.uv);
             v0 = domain.topology().face_vertex(s.face, c);
             z0 = domain.FaceToChart(s.face, c, s.uv);
             face1 = s.face, uv1 = s.uv;

@@ -32,12 +32,6 @@ Status ReadFitInput(const std::string& path, PolygonMesh* mesh, Index* dropped) 
   *dropped = 0;
   if (mesh->positions.empty())
     return Status::InvalidInput(path + ": no vertices (empty point cloud)");
-  for (Index v = 0; v < mesh->num_vertices(); ++v) {
-    const Vec3& p = mesh->positions[v];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-      return Status::InvalidInput(path + ": " + mesh->VertexName(v) + " is not finite");
-    }
-  }
   if (mesh->num_faces() > 0) *dropped = CompactUnusedVertices(mesh);
   return Status::Ok();
 }

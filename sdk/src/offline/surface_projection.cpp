@@ -146,7 +146,7 @@ double Norm(const Vec3& v) { return std::sqrt(glm::dot(v, v)); }
 // Re-expresses a jet's point in the chart of its face's dominant corner.
 void Rechart(const ManifoldDomain& domain, const DomainJet& jet, Index* v, Vec2* z) {
   const Vec2 uv = jet.uv;
-  const int a = uv.x <= 0.5 ? (uv.y <= 0.5 ? 0 : 3) : (uv.y <= 0.5 ? 1 : 2);
+  const int a = DominantCorner(uv);
   *v = domain.topology().face_vertex(jet.face, a);
   *z = domain.FaceToChart(jet.face, a, uv);
 }

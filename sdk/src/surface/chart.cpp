@@ -84,6 +84,8 @@ Vec2 FaceToCorner(int corner, Vec2 uv) {
   }
 }
 
+int DominantCorner(Vec2 uv) { return uv.x <= 0.5 ? (uv.y <= 0.5 ? 0 : 3) : (uv.y <= 0.5 ? 1 : 2); }
+
 glm::dmat2 FaceToCornerJacobian(int corner) {
   // glm matrices are column-major: dmat2(col0, col1), col0 = d(c,d)/ds, col1 = d(c,d)/dt.
   switch (corner & 3) {

@@ -5,8 +5,9 @@
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
+
+#include "dermis/core/file_bytes.h"
 
 namespace dermis {
 namespace {
@@ -258,21 +259,9 @@ Status ParseDsurf(std::string_view bytes, const std::string& name, DisplacedSurf
   return Status::Ok();
 }
 
-Status ReadFileBytes(const std::string& path, std::string* bytes) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::IoError(path + ": cannot open file");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) return Status::IoError(path + ": cannot read file");
-  in.seekg(0, std::ios::beg);
-  bytes->assign(static_cast<std::size_t>(size), '\0');
-  if (size > 0 && !in.read(&(*bytes)[0], size)) return Status::IoError(path + ": read failed");
-  return Status::Ok();
-}
-
 Status ReadDsurf(const std::string& path, DisplacedSurface* out) {
   std::string bytes;
-  Status s = ReadFileBytes(path, &bytes);
+  Status s = ReadFileBytes(path, "a .dsurf file", &bytes);
   if (!s.ok()) return s;
   return ParseDsurf(bytes, path, out);
 }

@@ -42,7 +42,7 @@ bool EvaluateSurface(const ManifoldDomain& domain, const LocalPatch* patches,
   const BlendType blend = domain.options().blend_type;
 
   // Dominant corner: the one whose quarter [0, 1/2]^2 of the face holds the point.
-  const int dominant = uv.x <= 0.5 ? (uv.y <= 0.5 ? 0 : 3) : (uv.y <= 0.5 ? 1 : 2);
+  const int dominant = DominantCorner(uv);
   const Vec2 cd_dom = FaceToCorner(dominant, uv);
   SurfacePoint r;
   r.chart_corner = dominant;

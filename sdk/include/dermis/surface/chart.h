@@ -60,6 +60,9 @@ Vec2 CornerToFace(int corner, Vec2 w);
 Vec2 FaceToCorner(int corner, Vec2 face_uv);
 /// d(c, d) / d(s, t) of corner a: a rotation by -a * 90 degrees (columns: d/ds, d/dt).
 glm::dmat2 FaceToCornerJacobian(int corner);
+/// The corner whose quarter [0, 1/2]^2 of the face holds face point uv (ties go to the
+/// lower quarter): the dominant chart of the point.
+int DominantCorner(Vec2 face_uv);
 /// T_delta: corner coordinates of corner a to those of corner (a + delta) mod 4 of the same face.
 Vec2 CornerTransition(int delta, Vec2 w);
 

@@ -40,7 +40,4 @@ Status ParseDsurf(std::string_view bytes, const std::string& name, DisplacedSurf
 /// Reads a .dsurf file (kIoError naming the path if it cannot be read).
 Status ReadDsurf(const std::string& path, DisplacedSurface* out);
 
-/// Reads a whole file into memory (kIoError naming the path on failure).
-Status ReadFileBytes(const std::string& path, std::string* bytes);
-
 }  // namespace dermis
