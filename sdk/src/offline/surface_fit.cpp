@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 
 #include "dermis/offline/parallel.h"
@@ -40,8 +38,9 @@ std::vector<ChartSample> GatherSamples(const std::vector<PointFit>& fits, bool o
   for (const PointFit& f : fits) {
     if (f.status == PointFitStatus::kOutside) continue;
     if (optimized) {
-      // Points whose solve failed lie where the detail folds over N~: their per-chart
-      // projections contradict each other and their neighbours, so they are not fitted.
+      // Points whose solve failed (kNotConverged) have no optimised samples: they lie where
+      // the detail folds over N~, and their per-chart projections contradict each other and
+      // their neighbours, so they are left out of the optimised fit (still measured by E1).
       samples.insert(samples.end(), f.optimized, f.optimized + f.num_optimized);
     } else {
       samples.insert(samples.end(), f.projected, f.projected + f.num_projected);
@@ -187,15 +186,6 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     input_to_surface = std::max(input_to_surface, closest[i]);
     count += 1.0;
   }
-  if (std::getenv("DERMIS_DEBUG_DUMP")) {
-    FILE* fp = std::fopen(std::getenv("DERMIS_DEBUG_DUMP"), "w");
-    for (std::size_t i = 0; i < fits.size(); ++i) {
-      std::fprintf(fp, "%d %g %g %d %g %g %g\n", static_cast<int>(fits[i].status), e1[i] * inv,
-                   closest[i] * inv, fits[i].face, fit_points[i].x, fit_points[i].y,
-                   fit_points[i].z);
-    }
-    std::fclose(fp);
-  }
   rep.error.mean = sum / count * inv;
   rep.error.rms = std::sqrt(sum2 / count) * inv;
   rep.error.max = mx * inv;
@@ -256,14 +246,6 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
       for (std::size_t i = b; i < e; ++i) d[i] = tree.Query(x[i]).distance;
     });
     const double surface_to_input = *std::max_element(d.begin(), d.end());
-    if (std::getenv("DERMIS_DEBUG_DUMP")) {
-      const std::size_t k =
-          static_cast<std::size_t>(std::max_element(d.begin(), d.end()) - d.begin());
-      std::fprintf(stderr,
-                   "surface->input max %g at %g %g %g face %d uv %g %g; input->surface %g\n",
-                   d[k] * inv, x[k].x, x[k].y, x[k].z, pattern.samples[k].face,
-                   pattern.samples[k].u, pattern.samples[k].v, input_to_surface * inv);
-    }
     Vec3 mlo(std::numeric_limits<double>::infinity()), mhi(-mlo);
     for (const Vec3& p : input.mesh->positions) mlo = glm::min(mlo, p), mhi = glm::max(mhi, p);
     const double diagonal = std::sqrt(glm::dot(mhi - mlo, mhi - mlo));

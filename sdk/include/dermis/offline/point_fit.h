@@ -22,8 +22,9 @@ struct ChartSample {
 /// What happened to one data point.
 enum class PointFitStatus : std::uint8_t {
   kOptimized = 0,     ///< Q(z) + delta N~(z) = p solved; all charts get the same delta.
-  kNotConverged = 1,  ///< The solve failed (the detail folds over N~ here): the projection's
-                      ///< per-chart samples are used instead.
+  kNotConverged = 1,  ///< The solve failed (the detail folds over N~ here): only the
+                      ///< projection's per-chart samples exist; the optimised fit leaves the
+                      ///< point out, and E1 measures it at its projection parameter.
   kOutside = 2,       ///< Left every chart during projection: not used.
 };
 
