@@ -18,4 +18,7 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run);
 /// Registers `fit`.
 void AddFitCommand(CLI::App* app, std::function<int()>* run);
 
+/// Registers `inspect`.
+void AddInspectCommand(CLI::App* app, std::function<int()>* run);
+
 }  // namespace dermis::cli

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::function<int()> run;
   dermis::cli::AddFitCommand(&app, &run);
+  dermis::cli::AddInspectCommand(&app, &run);
   dermis::cli::AddTessellateCommand(&app, &run);
   try {
     app.parse(argc, argv);

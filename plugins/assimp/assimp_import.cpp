@@ -1,0 +1,2 @@
+// Placeholder: being written.
+#include "dermis/plugins/assimp.h"

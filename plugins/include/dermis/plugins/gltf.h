@@ -1,0 +1,50 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+/// \file
+/// \brief glTF 2.0 import and export (tinygltf 2.7) to and from the neutral asset module.
+#pragma once
+
+#include <string>
+
+#include "dermis/asset/asset.h"
+#include "dermis/core/status.h"
+
+namespace dermis {
+
+/// Name of the root-level glTF extension that carries a .dsurf file (docs/file-format.md).
+constexpr const char* kDsurfGltfExtension = "DERMIS_displaced_surface";
+
+/// Reads a .gltf (embedded or external buffers and images) or .glb into `out`.
+/// Every accessor encoding is decoded (byteStride, normalised integers, sparse,
+/// KHR_mesh_quantization); all JOINTS_n/WEIGHTS_n sets are read and weights renormalised per
+/// vertex; skins without inverseBindMatrices get identities; images stay encoded bytes.
+/// Triangle strips and fans stay as they are (AssetPrimitive::mode).
+/// \param dsurf_bytes  if non-null, receives the bytes of the DERMIS_displaced_surface
+///                     extension (empty if the file has none).
+/// Errors (kIoError for unreadable files, kInvalidInput otherwise) name the file and a JSON
+/// pointer, e.g. "x.glb: /accessors/3: byteOffset + size exceeds bufferView 2".
+/// Nothing in `out` is valid after an error.
+Status ImportGltf(const std::string& path, Asset* out, std::string* dsurf_bytes = nullptr);
+
+/// Options of ExportGltf().
+struct GltfExportOptions {
+  /// Largest number of joint influences per vertex written (multiple of 4 -> JOINTS_0..n).
+  /// Extra influences are dropped smallest first and the rest renormalised in float32.
+  int max_influences = 4;
+  /// If non-empty, stored as the root extension DERMIS_displaced_surface (a bufferView).
+  std::string dsurf_bytes;
+  /// Written as asset.generator ("Dermis <version>" by default).
+  std::string generator = "Dermis";
+};
+
+/// Writes `asset` as .glb (binary) or .gltf (JSON with buffers and images as data URIs),
+/// chosen by the extension of `path`, atomically (temporary file, then rename). Obeys the
+/// Khronos validator's rules: exact accessor min/max for POSITION and animation inputs,
+/// float32 weights summing to 1 within float rounding with joint 0 padding, inverse bind
+/// matrices with last row (0, 0, 0, 1), image bytes passed through untouched.
+Status ExportGltf(const Asset& asset, const GltfExportOptions& options, const std::string& path);
+
+/// As ExportGltf() but returns the bytes of a .glb (binary = true) or a .gltf.
+Status SerializeGltf(const Asset& asset, const GltfExportOptions& options, bool binary,
+                     std::string* bytes);
+
+}  // namespace dermis
