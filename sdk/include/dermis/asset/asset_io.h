@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
 /// \brief Lossless binary serialisation of an Asset, used inside character .dsurf files.
-/// Layout (little-endian, versioned) in docs/file-format.md.
+/// Layout (little-endian, versioned) in docs/asset-stream.md.
 #pragma once
 
 #include <string>
@@ -21,7 +21,7 @@ std::string SerializeAsset(const Asset& asset);
 
 /// Parses bytes from SerializeAsset(). Counts are checked against the bytes present before
 /// anything is allocated, then ValidateAsset() runs; errors name `name` and the part at fault.
-/// Sets out->source = name.
+/// Sets out->source = name. On failure `*out` is left unchanged.
 Status ParseAsset(std::string_view bytes, const std::string& name, Asset* out);
 
 }  // namespace dermis
