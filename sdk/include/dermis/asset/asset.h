@@ -107,8 +107,8 @@ struct AssetNode {
   glm::dvec3 translation{0.0};
   glm::dquat rotation{1.0, 0.0, 0.0, 0.0};  ///< glm order (w, x, y, z); unit length.
   glm::dvec3 scale{1.0};
-  bool has_matrix = false;   ///< True: `matrix` is the local transform, TRS unused.
-  glm::dmat4 matrix{1.0};    ///< Column-major like glTF.
+  bool has_matrix = false;  ///< True: `matrix` is the local transform, TRS unused.
+  glm::dmat4 matrix{1.0};   ///< Column-major like glTF.
   Index mesh = kInvalidIndex;
   Index skin = kInvalidIndex;
   std::vector<double> weights;  ///< Morph weights overriding the mesh's (may be empty).
@@ -117,10 +117,10 @@ struct AssetNode {
 /// A skin: joints and their inverse bind matrices (identity when the source has none).
 struct AssetSkin {
   std::string name;
-  std::vector<Index> joints;  ///< Node indices.
+  std::vector<Index> joints;                     ///< Node indices.
   std::vector<glm::mat4> inverse_bind_matrices;  ///< One per joint, last row (0, 0, 0, 1).
-  bool has_inverse_bind_matrices = true;  ///< False when the source gave none (identity).
-  Index skeleton = kInvalidIndex;         ///< Optional common root node.
+  bool has_inverse_bind_matrices = true;         ///< False when the source gave none (identity).
+  Index skeleton = kInvalidIndex;                ///< Optional common root node.
 };
 
 enum class AnimationPath : std::uint8_t { kTranslation, kRotation, kScale, kWeights };

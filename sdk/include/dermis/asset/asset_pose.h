@@ -24,7 +24,7 @@ struct NodeTransform {
 
 /// A pose of the whole asset.
 struct AssetPose {
-  std::vector<NodeTransform> local;               ///< One per node.
+  std::vector<NodeTransform> local;                ///< One per node.
   std::vector<std::vector<double>> morph_weights;  ///< One per node (empty: mesh default).
 };
 
