@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "core/byte_stream.h"
 #include "dermis/core/file_bytes.h"
 
 namespace dermis {
@@ -14,109 +15,13 @@ namespace {
 
 constexpr char kMagic[8] = {'D', 'S', 'U', 'R', 'F', '\r', '\n', '\x1a'};
 
-std::uint64_t Fnv1a(std::string_view bytes) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (char c : bytes) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
-
-class Writer {
- public:
-  void U8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
-  void U32(std::uint32_t v) { Bytes(v, 4); }
-  void I32(std::int32_t v) { Bytes(static_cast<std::uint32_t>(v), 4); }
-  void U64(std::uint64_t v) { Bytes(v, 8); }
-  void I64(std::int64_t v) { Bytes(static_cast<std::uint64_t>(v), 8); }
-  void F64(double v) {
-    std::uint64_t b;
-    std::memcpy(&b, &v, 8);
-    Bytes(b, 8);
-  }
-  void F32(float v) {
-    std::uint32_t b;
-    std::memcpy(&b, &v, 4);
-    Bytes(b, 4);
-  }
-  std::string& str() { return out_; }
-
- private:
-  void Bytes(std::uint64_t v, int n) {
-    for (int i = 0; i < n; ++i) out_.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-  }
-  std::string out_;
-};
-
-class Reader {
- public:
-  Reader(std::string_view bytes, const std::string& name) : b_(bytes), name_(name) {}
-  // Fails unless `count` items of `size` bytes remain.
-  bool Need(std::uint64_t count, std::uint64_t size, const char* what) {
-    if (!ok()) return false;
-    const std::uint64_t left = b_.size() - pos_;
-    if (size != 0 && count > left / size) {
-      status_ = Status::InvalidInput(name_ + ": truncated or corrupt file: " + what + " needs " +
-                                     std::to_string(count) + " x " + std::to_string(size) +
-                                     " bytes at offset " + std::to_string(pos_) + ", " +
-                                     std::to_string(left) + " left");
-      return false;
-    }
-    return true;
-  }
-  std::uint64_t Raw(int n) {
-    std::uint64_t v = 0;
-    for (int i = 0; i < n; ++i) {
-      v |= static_cast<std::uint64_t>(
-               static_cast<unsigned char>(b_[pos_ + static_cast<std::size_t>(i)]))
-           << (8 * i);
-    }
-    pos_ += static_cast<std::size_t>(n);
-    return v;
-  }
-  std::uint8_t U8(const char* what) {
-    return Need(1, 1, what) ? static_cast<std::uint8_t>(Raw(1)) : 0;
-  }
-  std::uint32_t U32(const char* what) {
-    return Need(1, 4, what) ? static_cast<std::uint32_t>(Raw(4)) : 0;
-  }
-  std::int32_t I32(const char* what) { return static_cast<std::int32_t>(U32(what)); }
-  std::uint64_t U64(const char* what) { return Need(1, 8, what) ? Raw(8) : 0; }
-  std::int64_t I64(const char* what) { return static_cast<std::int64_t>(U64(what)); }
-  double F64(const char* what) {
-    const std::uint64_t b = U64(what);
-    double v;
-    std::memcpy(&v, &b, 8);
-    return v;
-  }
-  float F32(const char* what) {
-    const std::uint32_t b = U32(what);
-    float v;
-    std::memcpy(&v, &b, 4);
-    return v;
-  }
-  void Fail(const std::string& message) {
-    if (ok()) status_ = Status::InvalidInput(name_ + ": " + message);
-  }
-  bool ok() const { return status_.ok(); }
-  const Status& status() const { return status_; }
-  std::size_t pos() const { return pos_; }
-
- private:
-  std::string_view b_;
-  std::string name_;
-  std::size_t pos_ = 0;
-  Status status_;
-};
-
 }  // namespace
 
 std::string SerializeDsurf(const ManifoldDomain& domain, const Vec3* rest_positions,
                            const BsplineDisplacement* displacement) {
   const DomainData& d = domain.data();
   const MeshTopology& topo = domain.topology();
-  Writer w;
+  ByteWriter w;
   w.str().append(kMagic, 8);
   w.U32(kDsurfVersion);
   w.U32(0);  // flags, reserved
@@ -146,7 +51,7 @@ std::string SerializeDsurf(const ManifoldDomain& domain, const Vec3* rest_positi
     for (std::int64_t o : b.offsets) w.I64(o);
     for (float x : b.values) w.F32(x);
   }
-  w.U64(Fnv1a(w.str()));
+  w.U64(Fnv1a64(w.str()));
   return std::move(w.str());
 }
 
@@ -155,11 +60,11 @@ Status ParseDsurf(std::string_view bytes, const std::string& name, DisplacedSurf
     return Status::InvalidInput(name + ": not a .dsurf file (bad magic bytes)");
   }
   if (bytes.size() < 16) return Status::InvalidInput(name + ": truncated .dsurf header");
-  Reader r(bytes.substr(0, bytes.size() - 8), name);
+  ByteReader r(bytes.substr(0, bytes.size() - 8), name);
   {
-    Reader tail(bytes.substr(bytes.size() - 8), name);
+    ByteReader tail(bytes.substr(bytes.size() - 8), name);
     const std::uint64_t stored = tail.U64("checksum");
-    if (stored != Fnv1a(bytes.substr(0, bytes.size() - 8))) {
+    if (stored != Fnv1a64(bytes.substr(0, bytes.size() - 8))) {
       return Status::InvalidInput(name + ": checksum mismatch (the file is corrupt or truncated)");
     }
   }
