@@ -197,9 +197,23 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& optio
         " control vertices is more than the " + std::to_string(full) +
         " that splitting the whole mesh gives; use a smaller --control-vertices");
   }
-  // Find the triangle count whose split is closest to the target (V + E + F ~ 3 F).
+  // Find the triangle count whose split is closest to the target (V + E + F ~ 3 F), among
+  // simplifications that stay manifold and consistently oriented after the valence flips
+  // (meshopt_simplify can pinch thin parts of low-poly meshes into non-manifold edges).
+  auto manifold_after_flips = [&](std::vector<std::uint32_t>* candidate, int* flips) {
+    *flips = FlipToEvenValences(x, candidate);
+    std::map<std::uint32_t, Index> ids;
+    PolygonMesh m;
+    for (std::uint32_t i : *candidate) {
+      if (ids.emplace(i, static_cast<Index>(ids.size())).second) m.positions.push_back(x[i]);
+    }
+    for (std::size_t t = 0; t + 2 < candidate->size(); t += 3) {
+      m.AddFace({ids[(*candidate)[t]], ids[(*candidate)[t + 1]], ids[(*candidate)[t + 2]]});
+    }
+    return ValidatePolygonMesh(m).ok();
+  };
   std::vector<std::uint32_t> best, simplified(welded.size());
-  int best_count = -1;
+  int best_count = -1, best_flips = 0;
   double target_tris = options.target_vertices / 3.0;
   for (int attempt = 0; attempt < 6; ++attempt) {
     const std::size_t target_index = std::max<std::size_t>(
@@ -210,18 +224,44 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& optio
     std::vector<std::uint32_t> candidate(simplified.begin(),
                                          simplified.begin() + static_cast<std::ptrdiff_t>(n));
     const int count = SplitVertexCount(candidate);
-    if (best_count < 0 || std::abs(count - options.target_vertices) <
-                              std::abs(best_count - options.target_vertices)) {
+    int flips = 0;
+    if (n >= 6 && manifold_after_flips(&candidate, &flips) &&
+        (best_count < 0 || std::abs(count - options.target_vertices) <
+                               std::abs(best_count - options.target_vertices))) {
       best = candidate;
       best_count = count;
+      best_flips = flips;
     }
     if (count == options.target_vertices || n == 0) break;
     target_tris *= static_cast<double>(options.target_vertices) / std::max(count, 1);
   }
-  if (best.size() < 6) {
-    return Status::InvalidInput(where + ": simplification left fewer than 2 triangles");
+  // No manifold simplification near the target: keep more triangles, up to the whole mesh.
+  for (double grow = 1.3; best.empty(); grow *= 1.3) {
+    const std::size_t target_index =
+        std::min(welded.size(),
+                 3 * static_cast<std::size_t>(std::llround(grow * options.target_vertices / 3.0)));
+    std::vector<std::uint32_t> candidate = welded;
+    if (target_index < welded.size()) {
+      const std::size_t n =
+          meshopt_simplify(simplified.data(), welded.data(), welded.size(), wxyz.data(), unique,
+                           3 * sizeof(float), target_index, 1.0f, 0, nullptr);
+      candidate.assign(simplified.begin(), simplified.begin() + static_cast<std::ptrdiff_t>(n));
+    }
+    int flips = 0;
+    if (candidate.size() >= 6 && manifold_after_flips(&candidate, &flips)) {
+      best = candidate;
+      best_flips = flips;
+    } else if (target_index >= welded.size()) {
+      break;
+    }
   }
-  inf.edge_flips = FlipToEvenValences(x, &best);
+  if (best.size() < 6) {
+    return Status::InvalidInput(where +
+                                ": no simplification of the mesh is manifold with at least 2 "
+                                "triangles (is the input itself manifold and consistently "
+                                "oriented?)");
+  }
+  inf.edge_flips = best_flips;
   // Compact to the used vertices, in first-use order.
   std::map<std::uint32_t, Index> new_index;
   PolygonMesh tri_mesh;

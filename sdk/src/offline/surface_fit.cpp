@@ -255,6 +255,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     rep.error.hausdorff_percent_diagonal = 100.0 * h / diagonal;
   }
   rep.seconds.metrics = SecondsSince(t0);
+  fitted.point_fits = std::move(fits);
   *out = std::move(fitted);
   if (report) *report = rep;
   return Status::Ok();

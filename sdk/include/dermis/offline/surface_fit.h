@@ -15,6 +15,7 @@
 #include "dermis/offline/control_mesh.h"
 #include "dermis/offline/displacement_fit.h"
 #include "dermis/offline/domain_builder.h"
+#include "dermis/offline/point_fit.h"
 #include "dermis/offline/polygon_mesh.h"
 #include "dermis/surface/bspline_displacement.h"
 
@@ -91,6 +92,9 @@ struct FittedSurface {
   PolygonMesh control_mesh;  ///< As given or as built (all quads).
   ControlSurface surface;    ///< Domain and rest patches.
   std::unique_ptr<BsplineDisplacement> displacement;
+  /// One per fitted point, in input order without the held-out points (all of them when
+  /// FitOptions::holdout is 0): the surface parameter each point was fitted at.
+  std::vector<PointFit> point_fits;
 };
 
 /// Runs the fit: control mesh (given or built), projection and optimisation of the fitted
