@@ -1,0 +1,87 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+/// \file
+/// \brief A Dermis character: the source asset (skeleton, skins, clips, materials, meshes)
+/// plus one displaced surface per fitted mesh component, skin weights on its control
+/// vertices, and every original vertex bound to the surface by its fitted parameter.
+/// Stored as a version-2 .dsurf file (docs/file-format.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "dermis/asset/asset.h"
+#include "dermis/core/status.h"
+#include "dermis/surface/dsurf.h"
+
+namespace dermis {
+
+/// Format version of character files (plain surfaces are version 1).
+constexpr std::uint32_t kCharacterDsurfVersion = 2;
+
+/// Summary of one part's fit (paper units: the part's bounding box largest side is 1).
+struct PartFitSummary {
+  std::int64_t points = 0;     ///< Welded vertices of the component.
+  std::int64_t triangles = 0;  ///< Triangles of the component.
+  std::int64_t points_outside = 0;
+  std::int64_t points_not_converged = 0;
+  double scale = 1.0;                  ///< Largest side of the part's bounding box (model units).
+  double e1_mean = 0.0, e1_max = 0.0;  ///< |p - D(z_p)| over the part's vertices.
+  double hausdorff = 0.0;              ///< Two-sided, against the component's triangles.
+  std::int64_t coefficients = 0;
+  int levels = 0;
+};
+
+/// One connected component of one mesh, fitted to a displaced surface.
+struct CharacterPart {
+  Index mesh = kInvalidIndex;  ///< Into Asset::meshes (mesh space = bind space).
+  Index component = 0;         ///< Component number within the mesh (for messages).
+  Index skin = kInvalidIndex;  ///< Skin of the nodes drawing the mesh, or none (static).
+  DisplacedSurface surface;    ///< Control mesh, domain, patches' operators, displacement.
+  /// Influences of each control vertex (sets of 4, weights summing to 1), transferred from the
+  /// dense mesh's nearest surface point. Empty for a static part.
+  std::vector<glm::u16vec4> control_joints;
+  std::vector<glm::vec4> control_weights;
+  PartFitSummary fit;
+};
+
+/// Where an original vertex sits on the fitted surface.
+struct VertexBinding {
+  Index part = kInvalidIndex;  ///< Into Character::parts; none for a vertex of an unfitted part.
+  Index face = kInvalidIndex;  ///< Control face of that part's surface.
+  double u = 0.0, v = 0.0;     ///< Face coordinates in [0, 1]^2.
+};
+
+/// A mesh component left as an ordinary (skinned) mesh, and why.
+struct UnfittedPart {
+  Index mesh = kInvalidIndex;
+  Index component = 0;
+  std::int64_t vertices = 0, triangles = 0;
+  std::string reason;
+};
+
+/// A whole character.
+struct Character {
+  Asset asset;
+  std::vector<CharacterPart> parts;
+  /// bindings[mesh][primitive][vertex]: one per vertex of every primitive of every mesh.
+  std::vector<std::vector<std::vector<VertexBinding>>> bindings;
+  std::vector<UnfittedPart> unfitted;
+};
+
+/// Serialises a character as a version-2 .dsurf (deterministic bytes, FNV-1a checksum).
+std::string SerializeCharacter(const Character& character);
+
+/// Parses a version-2 .dsurf. Errors name `name` and the part of the file at fault.
+Status ParseCharacter(std::string_view bytes, const std::string& name, Character* out);
+
+/// The version field of .dsurf bytes (0 if they are not a .dsurf at all).
+std::uint32_t DsurfFileVersion(std::string_view bytes);
+
+/// Reads a .dsurf of either version: a version-1 surface becomes a character whose asset is
+/// the control mesh tessellation-free single part (no mesh, no bindings); see ReadDsurf() for
+/// plain surfaces.
+Status ReadCharacter(const std::string& path, Character* out);
+
+}  // namespace dermis
