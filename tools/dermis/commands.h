@@ -18,6 +18,9 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run);
 /// Registers `fit`.
 void AddFitCommand(CLI::App* app, std::function<int()>* run);
 
+/// Registers `export`.
+void AddExportCommand(CLI::App* app, std::function<int()>* run);
+
 /// Registers `inspect`.
 void AddInspectCommand(CLI::App* app, std::function<int()>* run);
 

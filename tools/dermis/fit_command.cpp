@@ -10,10 +10,13 @@
 #include <string>
 
 #include "commands.h"
+#include "dermis/asset/asset_validate.h"
 #include "dermis/offline/atomic_file.h"
+#include "dermis/offline/character_fit.h"
 #include "dermis/offline/obj_io.h"
 #include "dermis/offline/point_input.h"
 #include "dermis/offline/surface_fit.h"
+#include "dermis/plugins/import.h"
 #include "dermis/surface/dsurf.h"
 
 namespace dermis::cli {
@@ -30,6 +33,8 @@ struct FitArgs {
   double holdout = 0.1;
   int threads = 0;
   bool quiet = false;
+  double control_ratio = CharacterFitOptions{}.vertex_ratio;
+  bool refit = false;
 };
 
 int Fail(const Status& s) {
@@ -89,7 +94,129 @@ nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   return j;
 }
 
+bool IsScanPath(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return ext == ".obj" || ext == ".OBJ" || ext == ".ply" || ext == ".PLY";
+}
+
+nlohmann::ordered_json CharacterReportJson(const FitArgs& a, const Character& ch,
+                                           const CharacterFitReport& r) {
+  nlohmann::ordered_json j;
+  j["schema"] = "dermis.fit-character/1";
+  j["input"] = a.input;
+  j["output"] = a.output;
+  j["meshes"] = r.meshes;
+  j["components"] = r.components;
+  j["parts_fitted"] = r.parts_fitted;
+  j["parts_unfitted"] = r.parts_unfitted;
+  j["vertices"] = r.vertices;
+  j["vertices_bound"] = r.vertices_bound;
+  j["unit"] = "model units";
+  j["e1_mean"] = r.e1_mean;
+  j["e1_max"] = r.e1_max;
+  nlohmann::ordered_json parts = nlohmann::ordered_json::array();
+  for (const CharacterPart& p : ch.parts) {
+    nlohmann::ordered_json q;
+    q["mesh"] = p.mesh;
+    q["component"] = p.component;
+    q["skin"] = p.skin;
+    q["points"] = p.fit.points;
+    q["triangles"] = p.fit.triangles;
+    q["control_vertices"] = p.surface.rest_positions.size();
+    q["control_faces"] = p.surface.domain->num_faces();
+    q["coefficients"] = p.fit.coefficients;
+    q["levels"] = p.fit.levels;
+    q["points_outside"] = p.fit.points_outside;
+    q["points_not_converged"] = p.fit.points_not_converged;
+    q["scale"] = p.fit.scale;
+    q["e1_mean_unit"] = p.fit.e1_mean;
+    q["e1_max_unit"] = p.fit.e1_max;
+    q["hausdorff_unit"] = p.fit.hausdorff;
+    parts.push_back(q);
+  }
+  j["parts"] = parts;
+  nlohmann::ordered_json un = nlohmann::ordered_json::array();
+  for (const UnfittedPart& u : ch.unfitted) {
+    nlohmann::ordered_json q;
+    q["mesh"] = u.mesh;
+    q["component"] = u.component;
+    q["vertices"] = u.vertices;
+    q["triangles"] = u.triangles;
+    q["reason"] = u.reason;
+    un.push_back(q);
+  }
+  j["unfitted"] = un;
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+int RunFitCharacter(const FitArgs& a) {
+  Asset asset;
+  std::string embedded;
+  Status s = ImportAsset(a.input, &asset, &embedded);
+  if (!s.ok()) return Fail(s);
+  MakeParent(a.output);
+  if (!embedded.empty() && !a.refit) {
+    // A Dermis export with the .dsurf embedded: take it back as it was (lossless).
+    Character check;
+    s = ParseCharacter(embedded, a.input + ": extension DERMIS_displaced_surface", &check);
+    if (!s.ok()) return Fail(s);
+    s = WriteFileAtomically(a.output, embedded);
+    if (!s.ok()) return Fail(s);
+    if (!a.quiet) {
+      std::fprintf(stderr,
+                   "dermis fit: %s carries a Dermis surface (DERMIS_displaced_surface); wrote it "
+                   "unchanged to %s (use --refit to fit again)\n",
+                   a.input.c_str(), a.output.c_str());
+    }
+    return kExitOk;
+  }
+  CharacterFitOptions options;
+  options.vertex_ratio = a.control_ratio;
+  options.fit.displacement.max_levels = a.levels;
+  options.fit.displacement.density = a.density;
+  options.fit.threads = a.threads;
+  const bool tty = !a.quiet && isatty(STDERR_FILENO);
+  if (tty) {
+    options.progress = [](const std::string& stage) {
+      std::fprintf(stderr, "\rdermis fit: %-60s", stage.c_str());
+      std::fflush(stderr);
+    };
+  }
+  Character ch;
+  CharacterFitReport report;
+  s = FitCharacter(asset, options, &ch, &report);
+  if (tty) std::fprintf(stderr, "\r%-72s\r", "");
+  if (!s.ok()) return Fail(s);
+  s = WriteFileAtomically(a.output, SerializeCharacter(ch));
+  if (!s.ok()) return Fail(s);
+  if (!a.report.empty()) {
+    MakeParent(a.report);
+    s = WriteFileAtomically(a.report, CharacterReportJson(a, ch, report).dump(2) + "\n");
+    if (!s.ok()) return Fail(s);
+  }
+  if (!a.quiet) {
+    std::fprintf(
+        stderr,
+        "dermis fit: %s: %lld meshes, %lld components: %lld fitted, %lld left as "
+        "meshes\n  %lld of %lld vertices bound, E1 mean %.3g max %.3g (model units), "
+        "%.2f s\n",
+        a.input.c_str(), static_cast<long long>(report.meshes),
+        static_cast<long long>(report.components), static_cast<long long>(report.parts_fitted),
+        static_cast<long long>(report.parts_unfitted),
+        static_cast<long long>(report.vertices_bound), static_cast<long long>(report.vertices),
+        report.e1_mean, report.e1_max, report.seconds);
+    for (const UnfittedPart& u : ch.unfitted) {
+      std::fprintf(stderr, "  not fitted: mesh %d component %d (%lld vertices): %s\n", u.mesh,
+                   u.component, static_cast<long long>(u.vertices), u.reason.c_str());
+    }
+    std::fprintf(stderr, "wrote %s\n", a.output.c_str());
+  }
+  return kExitOk;
+}
+
 int RunFit(const FitArgs& a) {
+  if (!IsScanPath(a.input)) return RunFitCharacter(a);
   PolygonMesh mesh;
   Index dropped = 0;
   Status s = ReadFitInput(a.input, &mesh, &dropped);
@@ -161,7 +288,10 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   auto args = std::make_shared<FitArgs>();
   CLI::App* cmd = app->add_subcommand(
       "fit", "Fit a displaced manifold surface to a dense mesh or point cloud; write .dsurf.");
-  cmd->add_option("INPUT", args->input, "Dense mesh or point cloud: .obj or .ply")->required();
+  cmd->add_option("INPUT", args->input,
+                  "Dense mesh or point cloud (.obj, .ply), or a character: .glb, .gltf, or any "
+                  "format Assimp reads (.fbx, .dae, ...)")
+      ->required();
   cmd->add_option("-o,--output", args->output, "Output .dsurf")->required();
   cmd->add_option("--control-vertices", args->control_vertices,
                   "Control vertices of the automatic control mesh")
@@ -183,6 +313,12 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
+  cmd->add_option("--control-ratio", args->control_ratio,
+                  "Characters: control vertices per welded mesh vertex")
+      ->check(CLI::Range(0.01, 1.0))
+      ->capture_default_str();
+  cmd->add_flag("--refit", args->refit,
+                "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   cmd->callback([run, args]() { *run = [args]() { return RunFit(*args); }; });
