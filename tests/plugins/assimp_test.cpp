@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include <assimp/Exporter.hpp>
-#include <assimp/Importer.hpp>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +20,7 @@
 
 #include "dermis/asset/asset.h"
 #include "dermis/plugins/gltf.h"
+#include "support/assimp_counts.h"
 
 namespace dermis {
 namespace {
@@ -468,46 +468,8 @@ TEST_CASE("ImportAssimp reads a skinned, animated COLLADA file", "[assimp]") {
 
 // --- Assimp reading the .glb files ExportGltf writes. ---
 
-struct AssimpCounts {
-  unsigned meshes = 0;
-  unsigned animations = 0;
-  unsigned nodes = 0;
-  std::set<std::string> bones;
-};
-
-unsigned CountNodes(const aiNode* node) {
-  unsigned n = 1;
-  for (unsigned c = 0; c < node->mNumChildren; ++c) n += CountNodes(node->mChildren[c]);
-  return n;
-}
-
-// Reads `path` with Assimp directly (no post-processing; never through ImportAssimp).
-bool ReadWithAssimp(const std::string& path, AssimpCounts* counts, std::string* error) {
-  Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(path, 0);
-  if (scene == nullptr || scene->mRootNode == nullptr) {
-    *error = importer.GetErrorString();
-    return false;
-  }
-  counts->meshes = scene->mNumMeshes;
-  counts->animations = scene->mNumAnimations;
-  counts->nodes = CountNodes(scene->mRootNode);
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m)
-    for (unsigned b = 0; b < scene->mMeshes[m]->mNumBones; ++b)
-      counts->bones.insert(scene->mMeshes[m]->mBones[b]->mName.C_Str());
-  return true;
-}
-
 // Imports `source` with ImportGltf, exports it with ExportGltf to a temporary .glb and checks
-// what Assimp 5.2 makes of that file against the asset:
-// - meshes: Assimp makes one aiMesh per glTF primitive, so the total primitive count;
-// - bones: the union of bone names is the set of names of the joints of the skins, where
-//   Assimp names an unnamed node by its glTF id "nodes[i]" (ExportGltf keeps the node order);
-// - animations: one aiAnimation per clip;
-// - nodes: Assimp's glTF reader walks the default scene. With one root node that node is
-//   Assimp's root; with several it adds a "ROOT" node above them. So the count is the nodes
-//   reachable from the scene's roots, plus 1 when there is more than one root (SimpleSkin and
-//   Fox have two roots, the other three one).
+// what Assimp makes of that file against the asset (test::CheckAssimpReads).
 void CheckAssimpReadsExportedGlb(const std::string& source) {
   INFO(source);
   Asset asset;
@@ -518,36 +480,8 @@ void CheckAssimpReadsExportedGlb(const std::string& source) {
   s = ExportGltf(asset, GltfExportOptions{}, glb);
   INFO(s.message());
   REQUIRE(s.ok());
-  AssimpCounts counts;
-  std::string error;
-  const bool read = ReadWithAssimp(glb, &counts, &error);
+  test::CheckAssimpReads(glb, asset);
   fs::remove(glb);
-  INFO(error);
-  REQUIRE(read);
-
-  std::size_t primitives = 0;
-  for (const AssetMesh& mesh : asset.meshes) primitives += mesh.primitives.size();
-  std::set<std::string> joint_names;
-  for (const AssetSkin& skin : asset.skins)
-    for (const Index j : skin.joints) {
-      const std::string& name = asset.nodes[static_cast<std::size_t>(j)].name;
-      joint_names.insert(name.empty() ? "nodes[" + std::to_string(j) + "]" : name);
-    }
-  REQUIRE(asset.default_scene != kInvalidIndex);
-  const AssetScene& scene = asset.scenes[static_cast<std::size_t>(asset.default_scene)];
-  std::size_t reachable = 0;
-  std::vector<Index> stack(scene.nodes.begin(), scene.nodes.end());
-  while (!stack.empty()) {
-    const Index n = stack.back();
-    stack.pop_back();
-    ++reachable;
-    for (const Index c : asset.nodes[static_cast<std::size_t>(n)].children) stack.push_back(c);
-  }
-
-  CHECK(counts.meshes == primitives);
-  CHECK(counts.bones == joint_names);
-  CHECK(counts.animations == asset.animations.size());
-  CHECK(counts.nodes == reachable + (scene.nodes.size() > 1 ? 1 : 0));
 }
 
 TEST_CASE("Assimp reads the .glb files ExportGltf writes", "[assimp][gltf]") {

@@ -1,0 +1,198 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The whole character pipeline on the shared Khronos characters (issue 4's acceptance test):
+// import (tinygltf) -> FitCharacter -> bound and lod assets -> ExportGltf with and without the
+// embedded .dsurf, then judged from outside: the Khronos glTF-Validator (no errors, no warning
+// the source did not have), three.js's skinning of every export at sampled clip times against
+// our PosePrimitive(), Assimp reading each export with the expected counts, the bound rest pose
+// against the source vertices (E1), and the round trip through the embedded .dsurf.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dermis/asset/asset_validate.h"
+#include "dermis/offline/character.h"
+#include "dermis/offline/character_export.h"
+#include "dermis/offline/character_fit.h"
+#include "dermis/plugins/gltf.h"
+#include "support/assimp_counts.h"
+#include "support/external_checks.h"
+
+namespace dermis {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+
+struct Deviation {
+  double mean = 0.0, max = 0.0;
+  std::size_t vertices = 0;
+};
+
+/// |source vertex - exported vertex| over the vertices bound to a fitted part (bind space; the
+/// rest pose of both files skins them by the same matrices, so bind space is what differs).
+Deviation BoundDeviation(const Asset& source, const Asset& exported, const Character& ch) {
+  Deviation d;
+  REQUIRE(exported.meshes.size() == source.meshes.size());
+  for (std::size_t m = 0; m < source.meshes.size(); ++m) {
+    REQUIRE(exported.meshes[m].primitives.size() == source.meshes[m].primitives.size());
+    for (std::size_t p = 0; p < source.meshes[m].primitives.size(); ++p) {
+      const auto& a = source.meshes[m].primitives[p].positions;
+      const auto& b = exported.meshes[m].primitives[p].positions;
+      REQUIRE(a.size() == b.size());
+      for (std::size_t v = 0; v < a.size(); ++v) {
+        if (ch.bindings[m][p][v].part == kInvalidIndex) {
+          CHECK(a[v] == b[v]);  // unfitted parts keep their vertices
+          continue;
+        }
+        const double e = glm::length(glm::dvec3(a[v]) - glm::dvec3(b[v]));
+        d.mean += e;
+        d.max = std::max(d.max, e);
+        ++d.vertices;
+      }
+    }
+  }
+  if (d.vertices > 0) d.mean /= static_cast<double>(d.vertices);
+  return d;
+}
+
+double Diagonal(const Asset& asset) {
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const AssetMesh& m : asset.meshes) {
+    for (const AssetPrimitive& p : m.primitives) {
+      for (const glm::vec3& x : p.positions) {
+        lo = glm::min(lo, glm::dvec3(x));
+        hi = glm::max(hi, glm::dvec3(x));
+      }
+    }
+  }
+  return glm::length(hi - lo);
+}
+
+/// Exports `asset`, judges the file with the validator against the source's warnings, poses it
+/// with three.js, reads it with Assimp, and returns what ImportGltf reads back.
+Asset ExportAndJudge(const Asset& asset, const std::string& dsurf, const std::string& path,
+                     const test::ValidatorReport& source_report, const TempDir& tmp) {
+  INFO(path);
+  GltfExportOptions options;
+  options.dsurf_bytes = dsurf;
+  Status s = ExportGltf(asset, options, path);
+  INFO(s.message());
+  REQUIRE(s.ok());
+
+  const test::ValidatorReport report = test::Validate(path, tmp);
+  INFO(test::Messages(report));
+  CHECK(report.errors == 0);
+  for (const std::string& code : report.warning_codes) {
+    INFO("warning " << code);
+    CHECK(source_report.warning_codes.count(code) == 1);
+  }
+
+  Asset back;
+  std::string embedded;
+  s = ImportGltf(path, &back, &embedded);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  CHECK(embedded == dsurf);
+  test::CheckThreeMatchesOurPoses(path, back, tmp);
+  test::CheckAssimpReads(path, back);
+  return back;
+}
+
+void CheckCharacterPipeline(const std::string& name) {
+  const std::string source = std::string(test::kSharedGltfDir) + name;
+  if (!fs::exists(source)) {
+    WARN("skipped: " << source << " is absent (../shared/data)");
+    return;
+  }
+  if (!test::JsToolsReady()) return;
+  INFO(name);
+  TempDir tmp("dermis_pipeline");
+  Asset asset;
+  Status s = ImportGltf(source, &asset);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  const test::ValidatorReport source_report = test::Validate(source, tmp);
+  CHECK(source_report.errors == 0);
+
+  // Fit (what `dermis fit CHARACTER.glb -o OUT.dsurf` runs, with its defaults).
+  CharacterFitOptions fit_options;
+  fit_options.fit.threads = 2;
+  Character ch;
+  CharacterFitReport report;
+  s = FitCharacter(asset, fit_options, &ch, &report);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  CHECK(report.parts_fitted >= 1);
+  CHECK(report.vertices_bound == report.vertices);  // every source vertex lands on a surface
+  const std::string dsurf = SerializeCharacter(ch);
+
+  // bound: the source topology on the displaced surface.
+  Asset bound;
+  s = BuildBoundAsset(ch, CharacterExportOptions{}, &bound);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  ExportAndJudge(bound, std::string(), tmp.File("bound.glb"), source_report, tmp);
+  const Asset bound_back =
+      ExportAndJudge(bound, dsurf, tmp.File("bound_embed.glb"), source_report, tmp);
+  // The rest pose reproduces the source vertices within the fit's E1 (the glb holds float32
+  // positions: allow their rounding).
+  const Deviation dev = BoundDeviation(asset, bound_back, ch);
+  const double diagonal = Diagonal(asset);
+  CHECK(dev.vertices == static_cast<std::size_t>(report.vertices_bound));
+  CHECK(dev.mean == Approx(report.e1_mean).margin(1e-6 * diagonal));
+  CHECK(dev.max <= report.e1_max + 1e-6 * diagonal);
+  std::printf(
+      "%-18s vertices %6zu  diagonal %9.4g  E1 mean %.4g max %.4g  bound rest-pose deviation "
+      "mean %.4g max %.4g (model units)\n",
+      name.c_str(), dev.vertices, diagonal, report.e1_mean, report.e1_max, dev.mean, dev.max);
+
+  // Round trip: the same counts as the source, and the embedded .dsurf comes back bit-exact
+  // and parses to a character that serialises to the same bytes.
+  test::CheckSameCounts(asset, bound_back);
+  Character again;
+  s = ParseCharacter(dsurf, "embedded", &again);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  CHECK(SerializeCharacter(again) == dsurf);
+  test::CheckSameCounts(asset, again.asset);
+
+  // lod: the tessellated surfaces with transferred weights (morph targets are refused).
+  bool has_morphs = false;
+  for (const AssetMesh& m : asset.meshes) {
+    for (const AssetPrimitive& p : m.primitives) has_morphs |= !p.targets.empty();
+  }
+  Asset lod;
+  std::vector<std::string> notes;
+  s = BuildLodAsset(ch, CharacterExportOptions{}, &lod, &notes);
+  INFO(s.message());
+  if (has_morphs) {
+    CHECK(s.code() == StatusCode::kUnsupported);
+    return;
+  }
+  REQUIRE(s.ok());
+  REQUIRE(ValidateAsset(lod).ok());
+  const Asset lod_back = ExportAndJudge(lod, dsurf, tmp.File("lod_embed.glb"), source_report, tmp);
+  test::CheckSameSceneCounts(asset, lod_back);
+}
+
+TEST_CASE("pipeline: SimpleSkin fit, exported bound and lod, judged", "[pipeline][data]") {
+  CheckCharacterPipeline("SimpleSkin.gltf");
+}
+TEST_CASE("pipeline: RiggedSimple fit, exported bound and lod, judged", "[pipeline][data]") {
+  CheckCharacterPipeline("RiggedSimple.glb");
+}
+TEST_CASE("pipeline: RiggedFigure fit, exported bound and lod, judged", "[pipeline][data]") {
+  CheckCharacterPipeline("RiggedFigure.glb");
+}
+TEST_CASE("pipeline: Fox fit, exported bound and lod, judged", "[pipeline][data]") {
+  CheckCharacterPipeline("Fox.glb");
+}
+TEST_CASE("pipeline: CesiumMan fit, exported bound and lod, judged", "[pipeline][data]") {
+  CheckCharacterPipeline("CesiumMan.glb");
+}
+
+}  // namespace
+}  // namespace dermis
