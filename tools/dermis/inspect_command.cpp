@@ -19,6 +19,8 @@
 
 #include "commands.h"
 #include "dermis/asset/asset.h"
+#include "dermis/core/file_bytes.h"
+#include "dermis/offline/character.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/plugins/import.h"
 #include "dermis/surface/dsurf.h"
@@ -229,22 +231,92 @@ Json DescribeDsurf(const DisplacedSurface& surface) {
   return j;
 }
 
-/// Parses .dsurf bytes (a file, or the extension of a .glb) into the "surface" section.
-Status InspectDsurfBytes(std::string_view bytes, const std::string& name, Json* out) {
+/// The "character" section for a version-2 .dsurf: per fitted part its surface and fit errors
+/// (model units, and percent of the part's bounding box largest side), the unfitted parts with
+/// their reasons, and how many source vertices are bound to a surface.
+Json DescribeCharacter(const Character& ch) {
+  Json j;
+  std::int64_t vertices = 0, bound = 0;
+  for (const auto& mesh : ch.bindings) {
+    for (const auto& prim : mesh) {
+      for (const VertexBinding& b : prim) {
+        ++vertices;
+        if (b.part != kInvalidIndex) ++bound;
+      }
+    }
+  }
+  j["vertices"] = vertices;
+  j["vertices_bound"] = bound;
+  Json parts = Json::array();
+  for (const CharacterPart& part : ch.parts) {
+    Json p;
+    p["mesh"] = part.mesh;
+    p["component"] = part.component;
+    p["skin"] = part.skin == kInvalidIndex ? Json() : Json(part.skin);
+    p["surface"] = DescribeDsurf(part.surface);
+    const PartFitSummary& f = part.fit;
+    Json fit;
+    fit["points"] = f.points;
+    fit["triangles"] = f.triangles;
+    fit["points_outside"] = f.points_outside;
+    fit["points_not_converged"] = f.points_not_converged;
+    // PartFitSummary holds paper units (the part's largest side is 1): report model units
+    // and percent of that side.
+    fit["scale"] = f.scale;
+    fit["unit"] = "model units";
+    fit["e1_mean"] = f.e1_mean * f.scale;
+    fit["e1_max"] = f.e1_max * f.scale;
+    fit["hausdorff"] = f.hausdorff * f.scale;
+    fit["e1_mean_percent"] = 100.0 * f.e1_mean;
+    fit["e1_max_percent"] = 100.0 * f.e1_max;
+    fit["hausdorff_percent"] = 100.0 * f.hausdorff;
+    fit["coefficients"] = f.coefficients;
+    fit["levels"] = f.levels;
+    p["fit"] = fit;
+    parts.push_back(p);
+  }
+  j["parts"] = parts;
+  Json unfitted = Json::array();
+  for (const UnfittedPart& u : ch.unfitted) {
+    Json q;
+    q["mesh"] = u.mesh;
+    q["component"] = u.component;
+    q["vertices"] = u.vertices;
+    q["triangles"] = u.triangles;
+    q["reason"] = u.reason;
+    unfitted.push_back(q);
+  }
+  j["unfitted"] = unfitted;
+  return j;
+}
+
+/// Parses .dsurf bytes (a file, or the extension of a .glb). A plain surface (version 1) fills
+/// report["surface"]; a character (version 2) fills report["character"] and, when
+/// `with_asset` (a .dsurf file rather than a .glb that already described its asset),
+/// report["asset"] from the source asset it stores.
+Status InspectDsurfBytes(std::string_view bytes, const std::string& name, bool with_asset,
+                         Json* report) {
+  if (DsurfFileVersion(bytes) == kCharacterDsurfVersion) {
+    Character ch;
+    const Status s = ParseCharacter(bytes, name, &ch);
+    if (!s.ok()) return s;
+    if (with_asset) (*report)["asset"] = DescribeAsset(ch.asset);
+    (*report)["character"] = DescribeCharacter(ch);
+    return Status::Ok();
+  }
   DisplacedSurface surface;
   const Status s = ParseDsurf(bytes, name, &surface);
   if (!s.ok()) return s;
-  *out = DescribeDsurf(surface);
+  (*report)["surface"] = DescribeDsurf(surface);
   return Status::Ok();
 }
 
-/// A .dsurf file: fills report["surface"].
+/// A .dsurf file.
 Status InspectDsurf(const std::string& path, Json* report) {
-  DisplacedSurface surface;
-  const Status s = ReadDsurf(path, &surface);
+  std::string bytes;
+  const Status s = ReadFileBytes(path, "a .dsurf file", &bytes);
   if (!s.ok()) return s;
-  (*report)["surface"] = DescribeDsurf(surface);
-  return Status::Ok();
+  return InspectDsurfBytes(bytes, path, true, report);
 }
 
 /// Any file ImportAsset() reads: fills report["asset"] (and report["surface"] for a .glb that
@@ -256,10 +328,8 @@ Status InspectAssetFile(const std::string& path, Json* report) {
   if (!s.ok()) return s;
   (*report)["asset"] = DescribeAsset(asset);
   if (!dsurf_bytes.empty()) {
-    Json surface;
-    s = InspectDsurfBytes(dsurf_bytes, path + " (" + kDsurfGltfExtension + ")", &surface);
+    s = InspectDsurfBytes(dsurf_bytes, path + " (" + kDsurfGltfExtension + ")", false, report);
     if (!s.ok()) return s;
-    (*report)["surface"] = surface;
   }
   return Status::Ok();
 }
@@ -373,13 +443,46 @@ void PrintSurface(const Json& s) {
                           " coefficients (charts by levels: " + by_levels + ")");
 }
 
+void PrintCharacter(const Json& c) {
+  Row("parts", Str(Json(c["parts"].size())) + " fitted, " + Str(Json(c["unfitted"].size())) +
+                   " unfitted; " + Str(c["vertices_bound"]) + " of " + Str(c["vertices"]) +
+                   " vertices bound to a surface");
+  std::vector<std::vector<std::string>> rows;
+  for (const Json& p : c["parts"]) {
+    const Json& s = p["surface"];
+    const Json& f = p["fit"];
+    const Json& d = s["displacement"];
+    rows.push_back(
+        {"mesh " + Str(p["mesh"]) + " component " + Str(p["component"]),
+         Str(s["control_vertices"]) + " control vertices", Str(s["faces"]) + " faces",
+         d.is_null()
+             ? std::string("no displacement")
+             : Str(d["max_levels"]) + " levels, " + Str(d["coefficients"]) + " coefficients",
+         "E1 mean " + Str(f["e1_mean"]) + " (" + Str(f["e1_mean_percent"]) + " %), max " +
+             Str(f["e1_max"]) + " (" + Str(f["e1_max_percent"]) + " %)",
+         "Hausdorff " + Str(f["hausdorff"]) + " (" + Str(f["hausdorff_percent"]) + " %)"});
+  }
+  Table(rows);
+  rows.clear();
+  for (const Json& u : c["unfitted"]) {
+    rows.push_back({"mesh " + Str(u["mesh"]) + " component " + Str(u["component"]),
+                    Str(u["vertices"]) + " vertices", "unfitted: " + Str(u["reason"])});
+  }
+  Table(rows);
+}
+
 void PrintText(const Json& report) {
   Row("file",
       Str(report["file"]) + " (" + Str(report["format"]) + ", " + Str(report["bytes"]) + " bytes)");
   if (report.contains("asset")) PrintAsset(report["asset"]);
+  const bool embedded = report.contains("asset") && report["format"] != "dsurf";
   if (report.contains("surface")) {
-    if (report.contains("asset")) std::printf("%s\n", kDsurfGltfExtension);
+    if (embedded) std::printf("%s\n", kDsurfGltfExtension);
     PrintSurface(report["surface"]);
+  }
+  if (report.contains("character")) {
+    if (embedded) std::printf("%s\n", kDsurfGltfExtension);
+    PrintCharacter(report["character"]);
   }
 }
 

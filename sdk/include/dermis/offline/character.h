@@ -28,7 +28,7 @@ struct PartFitSummary {
   std::int64_t points_not_converged = 0;
   double scale = 1.0;                  ///< Largest side of the part's bounding box (model units).
   double e1_mean = 0.0, e1_max = 0.0;  ///< |p - D(z_p)| over the part's vertices.
-  double hausdorff = 0.0;              ///< Two-sided, against the component's triangles.
+  double hausdorff = 0.0;  ///< Two-sided, against the component's triangles (paper units).
   std::int64_t coefficients = 0;
   int levels = 0;
 };
