@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/byte_stream.h"
 #include "dermis/asset/asset_validate.h"
 
 namespace dermis {
@@ -37,39 +38,12 @@ constexpr std::uint64_t kMinScene = kMinString + kMinArray;
 // ---------------------------------------------------------------------------------------------
 // Writing.
 
-class Writer {
+/// The shared little-endian writer (core/byte_stream.h) plus the asset stream's compound
+/// encodings: booleans, counts, GLM vectors, arrays and arrays of sets.
+class Writer : public ByteWriter {
  public:
-  void U8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
-  void U16(std::uint16_t v) {
-    for (int i = 0; i < 2; ++i) U8(static_cast<std::uint8_t>((v >> (8 * i)) & 0xFFu));
-  }
-  void U32(std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) U8(static_cast<std::uint8_t>((v >> (8 * i)) & 0xFFu));
-  }
-  void U64(std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) U8(static_cast<std::uint8_t>((v >> (8 * i)) & 0xFFu));
-  }
-  void I32(std::int32_t v) {
-    std::uint32_t u;
-    std::memcpy(&u, &v, 4);
-    U32(u);
-  }
-  void F32(float v) {
-    std::uint32_t u;
-    std::memcpy(&u, &v, 4);
-    U32(u);
-  }
-  void F64(double v) {
-    std::uint64_t u;
-    std::memcpy(&u, &v, 8);
-    U64(u);
-  }
   void Bool(bool v) { U8(v ? 1 : 0); }
   void Count(std::size_t n) { U64(static_cast<std::uint64_t>(n)); }
-  void Str(const std::string& s) {
-    Count(s.size());
-    out_.append(s);
-  }
   void Vec(const glm::vec2& v) {
     F32(v.x);
     F32(v.y);
@@ -112,10 +86,7 @@ class Writer {
     for (const std::vector<T>& s : sets) Array(s);
   }
 
-  std::string Take() { return std::move(out_); }
-
- private:
-  std::string out_;
+  std::string Take() { return std::move(str()); }
 };
 
 void WritePrimitive(Writer& w, const AssetPrimitive& p) {

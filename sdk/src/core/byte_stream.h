@@ -25,6 +25,7 @@ inline std::uint64_t Fnv1a64(std::string_view bytes) {
 class ByteWriter {
  public:
   void U8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
+  void U16(std::uint16_t v) { Bytes(v, 2); }
   void U32(std::uint32_t v) { Bytes(v, 4); }
   void I32(std::int32_t v) { Bytes(static_cast<std::uint32_t>(v), 4); }
   void U64(std::uint64_t v) { Bytes(v, 8); }
