@@ -1,7 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // dermis fit: dense mesh or point cloud -> control mesh + displacements (.dsurf), with a JSON
 // report of the fit's errors and timings (paper section 4, Table 1).
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "character_json.h"
 #include "commands.h"
 #include "dermis/asset/asset_validate.h"
 #include "dermis/offline/atomic_file.h"
@@ -99,9 +99,8 @@ bool IsScanPath(const std::string& path) {
   return ext == ".obj" || ext == ".OBJ" || ext == ".ply" || ext == ".PLY";
 }
 
-nlohmann::ordered_json CharacterReportJson(const FitArgs& a, const Character& ch,
-                                           const CharacterFitReport& r) {
-  nlohmann::ordered_json j;
+Json CharacterReportJson(const FitArgs& a, const Character& ch, const CharacterFitReport& r) {
+  Json j;
   j["schema"] = "dermis.fit-character/1";
   j["input"] = a.input;
   j["output"] = a.output;
@@ -114,38 +113,10 @@ nlohmann::ordered_json CharacterReportJson(const FitArgs& a, const Character& ch
   j["unit"] = "model units";
   j["e1_mean"] = r.e1_mean;
   j["e1_max"] = r.e1_max;
-  nlohmann::ordered_json parts = nlohmann::ordered_json::array();
-  for (const CharacterPart& p : ch.parts) {
-    nlohmann::ordered_json q;
-    q["mesh"] = p.mesh;
-    q["component"] = p.component;
-    q["skin"] = p.skin;
-    q["points"] = p.fit.points;
-    q["triangles"] = p.fit.triangles;
-    q["control_vertices"] = p.surface.rest_positions.size();
-    q["control_faces"] = p.surface.domain->num_faces();
-    q["coefficients"] = p.fit.coefficients;
-    q["levels"] = p.fit.levels;
-    q["points_outside"] = p.fit.points_outside;
-    q["points_not_converged"] = p.fit.points_not_converged;
-    q["scale"] = p.fit.scale;
-    q["e1_mean_unit"] = p.fit.e1_mean;
-    q["e1_max_unit"] = p.fit.e1_max;
-    q["hausdorff_unit"] = p.fit.hausdorff;
-    parts.push_back(q);
-  }
-  j["parts"] = parts;
-  nlohmann::ordered_json un = nlohmann::ordered_json::array();
-  for (const UnfittedPart& u : ch.unfitted) {
-    nlohmann::ordered_json q;
-    q["mesh"] = u.mesh;
-    q["component"] = u.component;
-    q["vertices"] = u.vertices;
-    q["triangles"] = u.triangles;
-    q["reason"] = u.reason;
-    un.push_back(q);
-  }
-  j["unfitted"] = un;
+  // Per part and unfitted: the same description as `dermis inspect` gives.
+  const Json c = DescribeCharacter(ch);
+  j["parts"] = c["parts"];
+  j["unfitted"] = c["unfitted"];
   j["seconds"] = r.seconds;
   return j;
 }
@@ -176,17 +147,12 @@ int RunFitCharacter(const FitArgs& a) {
   options.fit.displacement.max_levels = a.levels;
   options.fit.displacement.density = a.density;
   options.fit.threads = a.threads;
-  const bool tty = !a.quiet && isatty(STDERR_FILENO);
-  if (tty) {
-    options.progress = [](const std::string& stage) {
-      std::fprintf(stderr, "\rdermis fit: %-60s", stage.c_str());
-      std::fflush(stderr);
-    };
-  }
+  const ProgressLine progress("dermis fit", a.quiet);
+  if (progress.enabled()) options.progress = [&](const std::string& st) { progress.Update(st); };
   Character ch;
   CharacterFitReport report;
   s = FitCharacter(asset, options, &ch, &report);
-  if (tty) std::fprintf(stderr, "\r%-72s\r", "");
+  progress.Clear();
   if (!s.ok()) return Fail(s);
   s = WriteFileAtomically(a.output, SerializeCharacter(ch));
   if (!s.ok()) return Fail(s);
@@ -239,17 +205,12 @@ int RunFit(const FitArgs& a) {
   options.displacement.density = a.density;
   options.holdout = a.holdout;
   options.threads = a.threads;
-  const bool tty = !a.quiet && isatty(STDERR_FILENO);
-  if (tty) {
-    options.progress = [](const std::string& stage) {
-      std::fprintf(stderr, "\rdermis fit: %-40s", stage.c_str());
-      std::fflush(stderr);
-    };
-  }
+  const ProgressLine progress("dermis fit", a.quiet);
+  if (progress.enabled()) options.progress = [&](const std::string& st) { progress.Update(st); };
   FittedSurface fitted;
   FitReport report;
   s = FitSurface(input, options, &fitted, &report);
-  if (tty) std::fprintf(stderr, "\r%-60s\r", "");
+  progress.Clear();
   if (!s.ok()) return Fail(s);
   const std::string bytes = SerializeDsurf(
       *fitted.surface.domain, fitted.surface.control.positions.data(), fitted.displacement.get());

@@ -1,0 +1,38 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// JSON descriptions shared by `dermis fit` (its report) and `dermis inspect` (.dsurf files and
+// glTF files carrying one), so both say the same thing in the same units.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "dermis/offline/character.h"
+#include "dermis/surface/dsurf.h"
+
+namespace dermis::cli {
+
+using Json = nlohmann::ordered_json;
+
+/// Control vertices, charts, faces and displacement levels of a surface.
+Json DescribeSurface(const DisplacedSurface& surface);
+
+/// Vertices bound, then per fitted part its mesh, component, skin, surface and fit errors
+/// (model units, and percent of the part's largest bounding-box side), then the unfitted parts
+/// with their reasons.
+Json DescribeCharacter(const Character& ch);
+
+/// A TTY progress line on stderr: Update() rewrites it, Clear() erases it. Does nothing when
+/// stderr is not a terminal or when `quiet`.
+class ProgressLine {
+ public:
+  ProgressLine(const char* command, bool quiet);
+  bool enabled() const { return enabled_; }
+  void Update(const std::string& stage) const;
+  void Clear() const;
+
+ private:
+  const char* command_;
+  bool enabled_;
+};
+
+}  // namespace dermis::cli
