@@ -1,0 +1,136 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+/// \file
+/// \brief Skeletal deformers of control vertices (runtime; core + GLM only): linear blend
+/// skinning and dual-quaternion skinning as baselines, and the sweep-based deformer (Hyun et
+/// al. 2005 as reconstructed in docs/deformation.md). One interface: the rig and the rest
+/// vertices are described once (Make*Deformer), then per frame SetPose() takes the joint
+/// palette and Deform() writes the deformed vertices into caller-owned buffers.
+///
+/// Paper context [Y section 5]: only the control vertices of a displaced surface are deformed;
+/// the local patches are refitted from them and the unchanged displacements ride along.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dermis/core/status.h"
+#include "dermis/core/types.h"
+
+namespace dermis {
+
+/// A skeleton as the deformers see it: the joints of one skin, in the skin's joint order.
+struct SkinRig {
+  /// Parent of each joint within the rig, or -1 (a root, or a parent that is not a joint).
+  std::vector<Index> parents;
+  /// Bind pose of each joint: the inverse of its inverse bind matrix, mapping the joint's local
+  /// frame to mesh (bind) space. Must be invertible and finite; the translation column is the
+  /// joint's position at bind time.
+  std::vector<glm::dmat4> bind;
+  /// Joint names, for messages only (may be empty).
+  std::vector<std::string> names;
+};
+
+/// Up to four influences of one vertex; weights are non-negative and sum to 1 (unused slots
+/// have weight 0).
+struct VertexWeights {
+  glm::u16vec4 joints{0};
+  glm::vec4 weights{0.0f};
+};
+
+/// Checks a rig and its influences: joint count, parents in range and acyclic, finite
+/// invertible bind matrices, joint indices in range, finite non-negative weights with a
+/// positive sum. `name` prefixes messages. `influences` may be null when `count` is 0.
+Status ValidateRig(const SkinRig& rig, const VertexWeights* influences, std::size_t count,
+                   const std::string& name);
+
+/// Which deformer.
+enum class DeformerKind : std::uint8_t { kLbs = 0, kDqs = 1, kSweep = 2 };
+
+/// "lbs", "dqs", "sweep".
+const char* DeformerName(DeformerKind kind);
+
+/// A deformer of a fixed set of rest vertices by one rig.
+///
+/// Threading: SetPose() is called once per frame by one thread; afterwards Deform() may run
+/// concurrently on disjoint ranges. Neither allocates, neither throws.
+class Deformer {
+ public:
+  virtual ~Deformer() = default;
+  virtual DeformerKind kind() const = 0;
+  virtual std::size_t num_vertices() const = 0;
+  virtual std::size_t num_joints() const = 0;
+
+  /// Takes the joint palette of a frame: `skin_matrices[j]` = world(joint j) * inverseBind(j),
+  /// mapping mesh (bind) space to world space (the matrices glTF skinning uses), one per joint.
+  /// Fails, keeping the previous pose, if a matrix is not finite or not invertible.
+  virtual Status SetPose(const glm::dmat4* skin_matrices) = 0;
+
+  /// Deformed positions of vertices [begin, end) into `positions[begin..end)`; if `normals` is
+  /// non-null and rest normals were given, the deformed unit normals too.
+  virtual void Deform(std::size_t begin, std::size_t end, Vec3* positions, Vec3* normals) const = 0;
+
+  /// Forgets what earlier poses left behind (the sweep's twist unwrapping); call it before a
+  /// pose unrelated to the previous one. LBS and DQS keep no history.
+  virtual void ResetHistory() {}
+};
+
+/// Linear blend skinning: x' = sum_j w_j M_j x; normals by the inverse transpose of the blended
+/// matrix. `rest_normals` may be null. Copies what it needs.
+Status MakeLbsDeformer(const SkinRig& rig, const Vec3* rest_positions, const Vec3* rest_normals,
+                       const VertexWeights* influences, std::size_t count,
+                       std::unique_ptr<Deformer>* out);
+
+/// Dual-quaternion skinning (Kavan et al. 2008): each joint's rigid part as a unit dual
+/// quaternion, blended in the hemisphere of the vertex's strongest joint and normalised by the
+/// real part; a joint's non-rigid part (scale, shear) is applied first, blended linearly (the
+/// two-phase variant). Normals rotate with the blended rotation (inverse transpose of the
+/// linear part).
+Status MakeDqsDeformer(const SkinRig& rig, const Vec3* rest_positions, const Vec3* rest_normals,
+                       const VertexWeights* influences, std::size_t count,
+                       std::unique_ptr<Deformer>* out);
+
+/// Settings of the sweep deformer (docs/deformation.md).
+struct SweepOptions {
+  /// Cross-section stations per bone (rest arc length sampled uniformly per bone).
+  int stations_per_bone = 16;
+  /// Blend-zone half-length at a joint = clamp(blend_radius_factor * r, ..) with r the mean
+  /// distance of the joint's bound vertices from the bone line; at most max_blend_fraction of
+  /// the shorter adjacent bone.
+  double blend_radius_factor = 1.0;
+  double max_blend_fraction = 0.45;
+  /// Volume correction: a sin^2 bump of half-width volume_width_factor * h scales the cross
+  /// sections so that the swept volume of the zone is kept (Pappus); false: no correction.
+  bool preserve_volume = true;
+  double volume_width_factor = 3.0;
+  /// Clamp vertices on the inside of a bend against the joint's bisector plane.
+  bool clamp_folds = true;
+  /// A vertex is bound to a single chain when that chain holds at least this share of its
+  /// weight; otherwise to each chain holding more than blend_threshold (shape blending).
+  double single_chain_threshold = 0.95;
+  double blend_threshold = 0.05;
+};
+
+/// The sweep deformer: chains of the skeleton become sweeps (a trajectory through the joints,
+/// circular-arc blended at interior joints; rotation-minimising frames with the joints' twists
+/// spread linearly along each bone and unwrapped against the previous frame); each vertex is
+/// bound once, in the bind pose, to the sweeps of the chains its weights name (parameter and
+/// cross-section coordinates) and blended by those weights; joints on no chain (branch joints
+/// such as pelvis or chest, and their weight share) fall back to dual-quaternion skinning.
+/// Twist unwrapping makes SetPose() stateful: call ResetHistory() before jumping to a pose
+/// unrelated to the previous one (twists are then taken the short way, within +-180 degrees).
+Status MakeSweepDeformer(const SkinRig& rig, const Vec3* rest_positions, const Vec3* rest_normals,
+                         const VertexWeights* influences, std::size_t count,
+                         const SweepOptions& options, std::unique_ptr<Deformer>* out);
+
+/// Creates the deformer of `kind` with default sweep options.
+Status MakeDeformer(DeformerKind kind, const SkinRig& rig, const Vec3* rest_positions,
+                    const Vec3* rest_normals, const VertexWeights* influences, std::size_t count,
+                    std::unique_ptr<Deformer>* out);
+
+}  // namespace dermis

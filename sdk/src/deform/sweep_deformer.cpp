@@ -1,0 +1,621 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Sweep-based deformation of control vertices (Hyun et al. 2005, "Sweep-based human
+// deformation", as reconstructed in sweep.md section 1 and docs/deformation.md; used on the
+// control mesh as in [Y] section 5).
+//
+// A chain J0..Jn of the skeleton becomes a sweep S(s) = C(s) + F(s) diag(sigma, sigma, 1) E:
+// - trajectory C (sweep.md 1.1): the bone lines, with a circular arc tangent to both bones in a
+//   blend zone of half-length h_j around each interior joint; rest arc length s maps linearly
+//   to each straight piece and to the arc angle;
+// - frames F (1.2): the start joint's rotation transported along C (rotation-minimising: constant
+//   on straight pieces, rotated about the arc axis on arcs, exact for circles), times a twist
+//   about the tangent that is linear in s between the joints' twists; each twist is the
+//   swing-twist residue of the joint's rotation against the transported frame, unwrapped
+//   along the chain and against the previous pose, so twists past 180 degrees do not flip;
+// - scale sigma (1.5): a sin^2 bump of half-width W around each bent joint, its height solved in
+//   closed form per frame so that the swept volume of the zone (Pappus) equals the rest one;
+// - folds (1.6): vertices of the two bones of a bent joint are clamped against its bisector
+//   plane on the inside of the bend.
+// Vertices are bound once in the bind pose (1.3): to each chain holding enough of their skin
+// weight, at the closest point of that chain's rest trajectory on the bones they are weighted
+// to, storing the offset in the start-transported frame. Several chains blend by weight; joints
+// on no chain (branch joints, and chain ends with several children) are deformed by DQS with
+// the vertex's original weights and blended in by their share (shape blending, sweep.md 2).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "deform/deform_math.h"
+#include "dermis/deform/deformer.h"
+
+namespace dermis {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMinBend = 1e-7;  // radians; below this a joint is straight
+
+/// One evaluated pose of a chain's trajectory (rest or posed).
+struct ChainGeom {
+  std::vector<Vec3> p;         // joint positions, n + 1
+  std::vector<Vec3> t;         // bone directions, n
+  std::vector<double> theta;   // bend per joint (0 at the ends), n + 1
+  std::vector<Vec3> axis;      // arc axis per joint
+  std::vector<Vec3> a, b;      // arc start (on bone j-1) and end (on bone j) per joint
+  std::vector<Vec3> centre;    // arc centre per joint
+  std::vector<glm::dquat> u;   // transport after joint j's arc, u[0] = identity, n + 1
+  std::vector<Vec3> bisector;  // unit (t[j-1] + t[j]) per joint
+
+  void Resize(std::size_t joints) {
+    p.resize(joints);
+    t.resize(joints - 1);
+    theta.assign(joints, 0.0);
+    axis.assign(joints, Vec3(0.0));
+    a.resize(joints);
+    b.resize(joints);
+    centre.resize(joints);
+    u.assign(joints, glm::dquat(1.0, 0.0, 0.0, 0.0));
+    bisector.assign(joints, Vec3(0.0));
+  }
+};
+
+/// What a chain keeps from the bind pose.
+struct Chain {
+  std::vector<Index> joints;                 // J0..Jn (rig indices)
+  std::vector<double> s;                     // rest arc length at each joint (polyline), n + 1
+  std::vector<double> len;                   // rest bone lengths, n
+  std::vector<double> h;                     // blend half-length per joint (0 at the ends)
+  std::vector<double> w;                     // volume bump half-width per joint (0: no bump)
+  std::vector<double> in1, in2, out1, out2;  // bump integrals inside / outside the blend zone
+  std::vector<double> rest_c;                // arc compression c(theta) at rest per joint
+  std::vector<Vec3> t0;                      // rest bone directions
+  ChainGeom rest;
+  // Per-frame state (preallocated).
+  ChainGeom pose;
+  glm::dquat q0{1.0, 0.0, 0.0, 0.0};  // rotation of J0 relative to bind
+  std::vector<double> tau;            // twist per joint
+  std::vector<double> prev_tau;
+  std::vector<double> k;  // bump height per joint
+  double length() const { return s.back(); }
+  std::size_t bones() const { return len.size(); }
+};
+
+/// A vertex bound to one chain.
+struct Binding {
+  std::uint32_t chain = 0;
+  std::uint32_t bone = 0;  // bone holding s (n - 1 beyond the end)
+  double weight = 0.0;
+  double s = 0.0;
+  Vec3 axial{0.0}, radial{0.0};  // offset in the start-transported frame
+  Vec3 normal{0.0};              // rest normal in the same frame
+};
+
+double ArcCompression(double theta) {
+  if (theta < 1e-6) return 1.0;
+  return 0.5 * theta / std::tan(0.5 * theta);
+}
+
+double Bump(double u, double w) {
+  if (!(w > 0.0) || std::fabs(u) >= w) return 0.0;
+  const double x = std::sin(kPi * (u + w) / (2.0 * w));
+  return x * x;
+}
+
+/// Arcs, transports and bisectors of a chain from its joint positions; `scale` maps rest
+/// blend half-lengths to posed ones per joint (bone stretch).
+void BuildGeom(const Chain& c, ChainGeom* g) {
+  const std::size_t n = c.bones();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 d = g->p[i + 1] - g->p[i];
+    const double l = glm::length(d);
+    g->t[i] = l > 0.0 ? d / l : (i > 0 ? g->t[i - 1] : c.t0[i]);
+  }
+  g->u[0] = glm::dquat(1.0, 0.0, 0.0, 0.0);
+  for (std::size_t j = 1; j < n; ++j) {
+    const Vec3 t1 = g->t[j - 1], t2 = g->t[j];
+    const double ratio_in = glm::length(g->p[j] - g->p[j - 1]) / c.len[j - 1];
+    const double ratio_out = glm::length(g->p[j + 1] - g->p[j]) / c.len[j];
+    const double hp = c.h[j] * 0.5 * (ratio_in + ratio_out);
+    g->a[j] = g->p[j] - hp * t1;
+    g->b[j] = g->p[j] + hp * t2;
+    const Vec3 cr = glm::cross(t1, t2);
+    const double sin_t = glm::length(cr);
+    const double theta = std::atan2(sin_t, glm::dot(t1, t2));
+    const Vec3 bis = t1 + t2;
+    const double bl = glm::length(bis);
+    g->bisector[j] = bl > 1e-12 ? bis / bl : t1;
+    if (theta > kMinBend && sin_t > 1e-12 && hp > 0.0) {
+      g->theta[j] = theta;
+      g->axis[j] = cr / sin_t;
+      const double radius = hp / std::tan(0.5 * theta);
+      const Vec3 inward = glm::normalize(t2 - glm::dot(t2, t1) * t1);
+      g->centre[j] = g->a[j] + radius * inward;
+      g->u[j] = glm::angleAxis(theta, g->axis[j]) * g->u[j - 1];
+    } else {
+      g->theta[j] = 0.0;
+      g->axis[j] = Vec3(0.0);
+      g->centre[j] = g->p[j];
+      // A straight joint: transport across it by the minimal rotation (usually identity).
+      g->u[j] = (sin_t > 1e-15 ? glm::angleAxis(theta, cr / sin_t) : glm::dquat(1.0, 0, 0, 0)) *
+                g->u[j - 1];
+    }
+  }
+  if (n >= 1) g->u[n] = g->u[n - 1];
+}
+
+/// Position, tangent and transport rotation of a chain's trajectory at rest arc length s
+/// (clamped to the chain).
+void EvalTrajectory(const Chain& c, const ChainGeom& g, double s, Vec3* pos, Vec3* tangent,
+                    glm::dquat* transport) {
+  const std::size_t n = c.bones();
+  s = std::clamp(s, 0.0, c.length());
+  std::size_t i = 0;
+  while (i + 1 < n && s >= c.s[i + 1]) ++i;
+  // In the second half of joint i's arc?
+  std::size_t j = 0;
+  if (i >= 1 && s < c.s[i] + c.h[i]) {
+    j = i;
+  } else if (i + 1 < n && s > c.s[i + 1] - c.h[i + 1]) {
+    j = i + 1;
+  }
+  if (j != 0 && c.h[j] > 0.0) {
+    const double f = (s - (c.s[j] - c.h[j])) / (2.0 * c.h[j]);
+    if (g.theta[j] > 0.0) {
+      const glm::dquat r = glm::angleAxis(f * g.theta[j], g.axis[j]);
+      *pos = g.centre[j] + r * (g.a[j] - g.centre[j]);
+      *tangent = r * g.t[j - 1];
+      *transport = r * g.u[j - 1];
+    } else {
+      *pos = g.a[j] + f * (g.b[j] - g.a[j]);
+      *tangent = g.t[j - 1];
+      *transport = f < 0.5 ? g.u[j - 1] : g.u[j];
+    }
+    return;
+  }
+  // Straight piece of bone i, from the end of joint i's arc to the start of joint i+1's.
+  const double s_from = c.s[i] + (i >= 1 ? c.h[i] : 0.0);
+  const double s_to = c.s[i + 1] - (i + 1 < n ? c.h[i + 1] : 0.0);
+  const Vec3 from = i >= 1 ? g.b[i] : g.p[0];
+  const Vec3 to = i + 1 < n ? g.a[i + 1] : g.p[n];
+  const double f = s_to > s_from ? (s - s_from) / (s_to - s_from) : 0.0;
+  *pos = from + f * (to - from);
+  *tangent = g.t[i];
+  *transport = g.u[i];
+}
+
+class SweepDeformer final : public Deformer {
+ public:
+  Status Build(const SkinRig& rig, const Vec3* rest, const Vec3* normals,
+               const VertexWeights* influences, std::size_t count, const SweepOptions& o);
+
+  DeformerKind kind() const override { return DeformerKind::kSweep; }
+  std::size_t num_vertices() const override { return count_; }
+  std::size_t num_joints() const override { return joints_; }
+
+  Status SetPose(const glm::dmat4* m) override;
+  void Deform(std::size_t begin, std::size_t end, Vec3* positions, Vec3* normals) const override;
+  void ResetHistory() override {
+    for (Chain& c : chains_) c.prev_tau.clear();
+    history_ = false;
+  }
+
+ private:
+  void MakeChains(const SkinRig& rig);
+  Vec3 EvalBinding(const Binding& b, Vec3* normal) const;
+
+  SweepOptions options_;
+  std::size_t joints_ = 0, count_ = 0;
+  bool has_normals_ = false;
+  bool history_ = false;
+  std::vector<Chain> chains_;
+  std::vector<int> chain_of_;        // per joint: chain, or -1 (rest bucket)
+  std::vector<int> bone_of_;         // per joint: bone index within its chain (n = end joint)
+  std::vector<Vec3> bind_position_;  // per joint
+  std::vector<glm::dquat> bind_rotation_;
+  std::vector<glm::dquat> pose_rotation_;  // per joint, relative to bind (per frame)
+  std::vector<std::uint32_t> first_;       // per vertex: first binding, count_ + 1 entries
+  std::vector<Binding> bindings_;
+  std::vector<double> rest_share_;  // per vertex: share deformed by DQS
+  // The DQS fallback (rest bucket): rest data and the per-frame joint palette.
+  std::vector<Vec3> rest_, normals_;
+  std::vector<VertexWeights> weights_;
+  std::vector<deform::DualQuat> dq_;
+  std::vector<glm::dmat3> stretch_;
+  bool has_stretch_ = false;
+};
+
+void SweepDeformer::MakeChains(const SkinRig& rig) {
+  const std::size_t n = rig.parents.size();
+  std::vector<std::vector<Index>> children(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (rig.parents[j] >= 0) children[static_cast<std::size_t>(rig.parents[j])].push_back(Index(j));
+  }
+  double scale = 0.0;
+  for (std::size_t j = 0; j < n; ++j) scale = std::max(scale, glm::length(bind_position_[j]));
+  const double min_bone = 1e-9 * std::max(scale, 1e-30);
+  auto bone_ok = [&](Index from, Index to) {
+    return glm::length(bind_position_[static_cast<std::size_t>(to)] -
+                       bind_position_[static_cast<std::size_t>(from)]) > min_bone;
+  };
+  // Heads: a root with exactly one child, a child of a joint with several children, and the
+  // child across a zero-length bone (which cuts a chain).
+  std::vector<bool> head(n, false);
+  for (std::size_t j = 0; j < n; ++j) {
+    const Index p = rig.parents[j];
+    if (p < 0) {
+      head[j] = true;
+    } else {
+      head[j] = children[static_cast<std::size_t>(p)].size() >= 2 || !bone_ok(p, Index(j));
+    }
+  }
+  chain_of_.assign(n, -1);
+  bone_of_.assign(n, -1);
+  for (std::size_t j0 = 0; j0 < n; ++j0) {
+    if (!head[j0] || children[j0].size() != 1 || !bone_ok(Index(j0), children[j0][0])) continue;
+    Chain c;
+    c.joints.push_back(Index(j0));
+    Index cur = Index(j0);
+    while (children[static_cast<std::size_t>(cur)].size() == 1) {
+      const Index next = children[static_cast<std::size_t>(cur)][0];
+      if (!bone_ok(cur, next)) break;
+      c.joints.push_back(next);
+      cur = next;
+    }
+    const bool leaf_end = children[static_cast<std::size_t>(cur)].empty();
+    const int id = static_cast<int>(chains_.size());
+    const std::size_t bones = c.joints.size() - 1;
+    for (std::size_t i = 0; i < bones; ++i) {
+      chain_of_[static_cast<std::size_t>(c.joints[i])] = id;
+      bone_of_[static_cast<std::size_t>(c.joints[i])] = static_cast<int>(i);
+    }
+    if (leaf_end) {
+      chain_of_[static_cast<std::size_t>(cur)] = id;
+      bone_of_[static_cast<std::size_t>(cur)] = static_cast<int>(bones);
+    }
+    const std::size_t nj = c.joints.size();
+    c.s.assign(nj, 0.0);
+    c.len.assign(bones, 0.0);
+    c.t0.assign(bones, Vec3(0.0));
+    for (std::size_t i = 0; i < bones; ++i) {
+      const Vec3 d = bind_position_[static_cast<std::size_t>(c.joints[i + 1])] -
+                     bind_position_[static_cast<std::size_t>(c.joints[i])];
+      c.len[i] = glm::length(d);
+      c.t0[i] = d / c.len[i];
+      c.s[i + 1] = c.s[i] + c.len[i];
+    }
+    c.h.assign(nj, 0.0);
+    c.w.assign(nj, 0.0);
+    c.in1.assign(nj, 0.0);
+    c.in2.assign(nj, 0.0);
+    c.out1.assign(nj, 0.0);
+    c.out2.assign(nj, 0.0);
+    c.rest_c.assign(nj, 1.0);
+    c.tau.assign(nj, 0.0);
+    c.k.assign(nj, 0.0);
+    c.rest.Resize(nj);
+    c.pose.Resize(nj);
+    for (std::size_t i = 0; i < nj; ++i) {
+      c.rest.p[i] = bind_position_[static_cast<std::size_t>(c.joints[i])];
+    }
+    chains_.push_back(std::move(c));
+  }
+}
+
+Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* normals,
+                            const VertexWeights* influences, std::size_t count,
+                            const SweepOptions& o) {
+  options_ = o;
+  joints_ = rig.parents.size();
+  count_ = count;
+  has_normals_ = normals != nullptr;
+  if (o.stations_per_bone < 1 || !(o.blend_radius_factor >= 0.0) ||
+      !(o.max_blend_fraction >= 0.0 && o.max_blend_fraction < 0.5) ||
+      !(o.volume_width_factor >= 1.0) || !(o.single_chain_threshold <= 1.0) ||
+      !(o.blend_threshold >= 0.0)) {
+    return Status::InvalidInput("sweep: options out of range");
+  }
+  const Status s = ValidateRig(rig, influences, count, "sweep");
+  if (!s.ok()) return s;
+  rest_.assign(rest, rest + count);
+  if (normals != nullptr) normals_.assign(normals, normals + count);
+  weights_.assign(influences, influences + count);
+  dq_.resize(joints_);
+  stretch_.assign(joints_, glm::dmat3(1.0));
+  bind_position_.resize(joints_);
+  bind_rotation_.resize(joints_);
+  pose_rotation_.assign(joints_, glm::dquat(1.0, 0.0, 0.0, 0.0));
+  for (std::size_t j = 0; j < joints_; ++j) {
+    bind_position_[j] = Vec3(rig.bind[j][3]);
+    bind_rotation_[j] =
+        glm::normalize(glm::quat_cast(deform::PolarRotation(glm::dmat3(rig.bind[j]))));
+  }
+  MakeChains(rig);
+
+  // Blend half-lengths from the vertices around each joint: the 90th percentile of their
+  // distance to the bone polyline (the skin, not the inside), capped per bone length.
+  std::vector<std::vector<std::vector<double>>> near(chains_.size());
+  for (std::size_t ci = 0; ci < chains_.size(); ++ci) near[ci].resize(chains_[ci].joints.size());
+  for (std::size_t v = 0; v < count; ++v) {
+    const glm::dvec4 w = deform::NormalizedWeights(influences[v]);
+    for (int k = 0; k < 4; ++k) {
+      if (!(w[k] > 0.0)) continue;
+      const std::size_t j = influences[v].joints[k];
+      const int ci = chain_of_[j];
+      if (ci < 0) continue;
+      const Chain& c = chains_[static_cast<std::size_t>(ci)];
+      // Distance to the polyline and the arc length of the closest point.
+      double best = std::numeric_limits<double>::max(), best_s = 0.0;
+      for (std::size_t i = 0; i < c.bones(); ++i) {
+        const Vec3 p0 = c.rest.p[i];
+        double f = glm::dot(rest[v] - p0, c.t0[i]) / c.len[i];
+        f = std::clamp(f, 0.0, 1.0);
+        const double d = glm::length(rest[v] - (p0 + f * c.len[i] * c.t0[i]));
+        if (d < best) best = d, best_s = c.s[i] + f * c.len[i];
+      }
+      for (std::size_t jj = 1; jj + 1 < c.joints.size(); ++jj) {
+        const double reach = 0.5 * std::min(c.len[jj - 1], c.len[jj]);
+        if (std::fabs(best_s - c.s[jj]) <= reach) near[ci][jj].push_back(best);
+      }
+    }
+  }
+  for (std::size_t ci = 0; ci < chains_.size(); ++ci) {
+    Chain& c = chains_[ci];
+    for (std::size_t j = 1; j + 1 < c.joints.size(); ++j) {
+      std::vector<double>& r = near[ci][j];
+      const double shorter = std::min(c.len[j - 1], c.len[j]);
+      double radius = 0.1 * shorter;
+      if (!r.empty()) {
+        std::sort(r.begin(), r.end());
+        radius = r[std::min(r.size() - 1,
+                            static_cast<std::size_t>(0.9 * static_cast<double>(r.size())))];
+      }
+      c.h[j] = std::min(o.blend_radius_factor * radius, o.max_blend_fraction * shorter);
+      if (o.preserve_volume && c.h[j] > 0.0) {
+        // The bump may not reach past the chain's ends.
+        c.w[j] = std::min(o.volume_width_factor * c.h[j], std::min(c.s[j], c.length() - c.s[j]));
+        c.w[j] = std::max(c.w[j], c.h[j]);
+        const int steps = 512;
+        const double du = 2.0 * c.w[j] / steps;
+        for (int q = 0; q < steps; ++q) {
+          const double u = -c.w[j] + (q + 0.5) * du;
+          const double b = Bump(u, c.w[j]);
+          if (std::fabs(u) < c.h[j]) {
+            c.in1[j] += b * du, c.in2[j] += b * b * du;
+          } else {
+            c.out1[j] += b * du, c.out2[j] += b * b * du;
+          }
+        }
+      }
+    }
+    BuildGeom(c, &c.rest);
+    for (std::size_t j = 1; j + 1 < c.joints.size(); ++j)
+      c.rest_c[j] = ArcCompression(c.rest.theta[j]);
+  }
+
+  // Bind every vertex.
+  first_.assign(count + 1, 0);
+  rest_share_.assign(count, 0.0);
+  for (std::size_t v = 0; v < count; ++v) {
+    first_[v] = static_cast<std::uint32_t>(bindings_.size());
+    const VertexWeights& iw = influences[v];
+    const glm::dvec4 w = deform::NormalizedWeights(iw);
+    // Share of each chain.
+    int ids[4] = {-1, -1, -1, -1};
+    double share[4] = {0, 0, 0, 0};
+    int used = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (!(w[k] > 0.0)) continue;
+      const int ci = chain_of_[iw.joints[k]];
+      if (ci < 0) continue;
+      int slot = 0;
+      while (slot < used && ids[slot] != ci) ++slot;
+      if (slot == used) ids[used++] = ci;
+      share[slot] += w[k];
+    }
+    int best = -1;
+    for (int q = 0; q < used; ++q)
+      if (best < 0 || share[q] > share[best]) best = q;
+    double kept = 0.0;
+    for (int q = 0; q < used; ++q) {
+      const bool single = best >= 0 && share[best] >= o.single_chain_threshold;
+      if (single ? q != best : share[q] <= o.blend_threshold) continue;
+      const double weight = single ? 1.0 : share[q];
+      kept += weight;
+      const Chain& c = chains_[static_cast<std::size_t>(ids[q])];
+      // Allowed arc-length ranges: the bones this chain's joints weight the vertex to.
+      double best_d = std::numeric_limits<double>::max(), best_s = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        if (!(w[k] > 0.0) || chain_of_[iw.joints[k]] != ids[q]) continue;
+        const int bone = bone_of_[iw.joints[k]];
+        double lo = c.s[static_cast<std::size_t>(std::min<int>(bone, int(c.bones())))];
+        double hi =
+            bone < static_cast<int>(c.bones()) ? c.s[static_cast<std::size_t>(bone) + 1] : lo;
+        const int samples = 4 * o.stations_per_bone;
+        auto dist = [&](double sv) {
+          Vec3 p, t;
+          glm::dquat u;
+          EvalTrajectory(c, c.rest, sv, &p, &t, &u);
+          return glm::length(rest[v] - p);
+        };
+        // Coarse scan, then golden-section refinement around the best sample.
+        double bs = lo, bd = dist(lo);
+        for (int q2 = 1; q2 <= samples; ++q2) {
+          const double sv = lo + (hi - lo) * q2 / samples;
+          const double d = dist(sv);
+          if (d < bd) bd = d, bs = sv;
+        }
+        double a = std::max(lo, bs - (hi - lo) / samples),
+               b = std::min(hi, bs + (hi - lo) / samples);
+        for (int it = 0; it < 60 && b - a > 1e-12 * (1.0 + c.length()); ++it) {
+          const double m1 = a + 0.381966011250105 * (b - a), m2 = b - 0.381966011250105 * (b - a);
+          if (dist(m1) < dist(m2)) {
+            b = m2;
+          } else {
+            a = m1;
+          }
+        }
+        const double sv = 0.5 * (a + b);
+        const double d = dist(sv);
+        if (d < bd) bd = d, bs = sv;
+        if (bd < best_d) best_d = bd, best_s = bs;
+      }
+      Binding bind;
+      bind.chain = static_cast<std::uint32_t>(ids[q]);
+      bind.weight = weight;
+      bind.s = best_s;
+      std::size_t bone = 0;
+      while (bone + 1 < c.bones() && best_s >= c.s[bone + 1]) ++bone;
+      bind.bone = static_cast<std::uint32_t>(bone);
+      Vec3 p, t;
+      glm::dquat u;
+      EvalTrajectory(c, c.rest, best_s, &p, &t, &u);
+      const glm::dquat back = glm::conjugate(u);
+      const Vec3 off = back * (rest[v] - p);
+      const Vec3 t_start = c.t0[0];
+      bind.axial = glm::dot(off, t_start) * t_start;
+      bind.radial = off - bind.axial;
+      if (normals != nullptr) bind.normal = back * normals[v];
+      bindings_.push_back(bind);
+    }
+    rest_share_[v] = std::max(0.0, 1.0 - kept);
+    if (rest_share_[v] < 1e-9) rest_share_[v] = 0.0;
+  }
+  first_[count] = static_cast<std::uint32_t>(bindings_.size());
+  // Normalise binding weights with the rest share so they sum to 1.
+  for (std::size_t v = 0; v < count; ++v) {
+    double sum = rest_share_[v];
+    for (std::uint32_t q = first_[v]; q < first_[v + 1]; ++q) sum += bindings_[q].weight;
+    if (sum > 0.0) {
+      rest_share_[v] /= sum;
+      for (std::uint32_t q = first_[v]; q < first_[v + 1]; ++q) bindings_[q].weight /= sum;
+    }
+  }
+  for (Chain& c : chains_) {
+    c.pose = c.rest;
+    c.prev_tau.reserve(c.joints.size());
+  }
+  return Status::Ok();
+}
+
+Status SweepDeformer::SetPose(const glm::dmat4* m) {
+  for (std::size_t j = 0; j < joints_; ++j) {
+    if (!deform::IsFinite(m[j]) || !(std::fabs(glm::determinant(glm::dmat3(m[j]))) > 1e-12)) {
+      return Status::InvalidInput("sweep: skin matrix of joint " + std::to_string(j) +
+                                  " is not finite or not invertible");
+    }
+  }
+  bool stretch = false;
+  for (std::size_t j = 0; j < joints_; ++j) {
+    stretch = deform::SplitSkinMatrix(m[j], &dq_[j], &stretch_[j]) || stretch;
+  }
+  has_stretch_ = stretch;
+  for (std::size_t j = 0; j < joints_; ++j) {
+    pose_rotation_[j] = glm::normalize(glm::quat_cast(deform::PolarRotation(glm::dmat3(m[j]))));
+  }
+  for (Chain& c : chains_) {
+    const std::size_t nj = c.joints.size(), n = c.bones();
+    for (std::size_t i = 0; i < nj; ++i) {
+      const std::size_t j = static_cast<std::size_t>(c.joints[i]);
+      c.pose.p[i] = Vec3(m[j] * glm::dvec4(bind_position_[j], 1.0));
+    }
+    BuildGeom(c, &c.pose);
+    c.q0 = pose_rotation_[static_cast<std::size_t>(c.joints[0])];
+    // Twists: the residue of each joint's rotation against the transported frame.
+    for (std::size_t i = 0; i < nj; ++i) {
+      const std::size_t bone = std::min(i, n - 1);
+      const glm::dquat transported = c.pose.u[bone] * c.q0 * glm::conjugate(c.rest.u[bone]);
+      const glm::dquat d =
+          glm::conjugate(transported) * pose_rotation_[static_cast<std::size_t>(c.joints[i])];
+      double tau = i == 0 ? 0.0 : deform::TwistAngle(d, c.t0[bone]);
+      const double ref =
+          history_ && c.prev_tau.size() == nj ? c.prev_tau[i] : (i == 0 ? 0.0 : c.tau[i - 1]);
+      tau += 2.0 * kPi * std::round((ref - tau) / (2.0 * kPi));
+      c.tau[i] = tau;
+    }
+    c.prev_tau.assign(c.tau.begin(), c.tau.end());
+    // Volume: bump heights solving  int (1 + k b)^2 c ds = rest volume of the zone.
+    for (std::size_t j = 1; j + 1 < nj; ++j) {
+      c.k[j] = 0.0;
+      if (!(c.w[j] > 0.0)) continue;
+      const double cc = ArcCompression(c.pose.theta[j]);
+      const double qa = cc * c.in2[j] + c.out2[j];
+      const double qb = cc * c.in1[j] + c.out1[j];
+      const double target = c.rest_c[j] * 2.0 * c.h[j] + 2.0 * (c.w[j] - c.h[j]);
+      const double qc = cc * 2.0 * c.h[j] + 2.0 * (c.w[j] - c.h[j]) - target;
+      const double disc = qb * qb - qa * qc;
+      if (qa > 0.0 && disc >= 0.0) c.k[j] = (-qb + std::sqrt(disc)) / qa;
+    }
+  }
+  history_ = true;
+  return Status::Ok();
+}
+
+Vec3 SweepDeformer::EvalBinding(const Binding& b, Vec3* normal) const {
+  const Chain& c = chains_[b.chain];
+  const std::size_t n = c.bones();
+  Vec3 pos, tangent;
+  glm::dquat transport;
+  EvalTrajectory(c, c.pose, b.s, &pos, &tangent, &transport);
+  // Twist, linear in s between the joints.
+  const double s = std::clamp(b.s, 0.0, c.length());
+  std::size_t i = 0;
+  while (i + 1 < n && s >= c.s[i + 1]) ++i;
+  const double f = (s - c.s[i]) / c.len[i];
+  const double twist = c.tau[i] + (c.tau[i + 1] - c.tau[i]) * std::clamp(f, 0.0, 1.0);
+  double sigma = 1.0;
+  for (std::size_t j = 1; j + 1 < c.joints.size(); ++j)
+    sigma += c.k[j] * Bump(b.s - c.s[j], c.w[j]);
+  const glm::dquat g = glm::angleAxis(twist, tangent) * transport * c.q0;
+  Vec3 x = pos + g * (b.axial + sigma * b.radial);
+  if (options_.clamp_folds) {
+    // The bisector planes of the joints at both ends of the vertex's bone.
+    for (std::size_t j : {static_cast<std::size_t>(b.bone), static_cast<std::size_t>(b.bone) + 1}) {
+      if (j == 0 || j >= n || !(c.pose.theta[j] > c.rest.theta[j] + 1e-9)) continue;
+      const double d = glm::dot(x - c.pose.p[j], c.pose.bisector[j]);
+      const bool before = b.s < c.s[j];
+      if ((before && d > 0.0) || (!before && d < 0.0)) x -= d * c.pose.bisector[j];
+    }
+  }
+  if (normal != nullptr) *normal = g * b.normal;
+  return x;
+}
+
+void SweepDeformer::Deform(std::size_t begin, std::size_t end, Vec3* positions,
+                           Vec3* normals) const {
+  end = std::min(end, count_);
+  const bool want_normals = normals != nullptr && has_normals_;
+  for (std::size_t v = begin; v < end; ++v) {
+    Vec3 x(0.0), nsum(0.0);
+    for (std::uint32_t q = first_[v]; q < first_[v + 1]; ++q) {
+      Vec3 nn(0.0);
+      x += bindings_[q].weight * EvalBinding(bindings_[q], want_normals ? &nn : nullptr);
+      nsum += bindings_[q].weight * nn;
+    }
+    if (rest_share_[v] > 0.0) {
+      Vec3 xd, nd;
+      deform::DqsPoint(dq_.data(), stretch_.data(), has_stretch_, weights_[v], rest_[v],
+                       want_normals ? normals_[v] : Vec3(0.0), &xd, want_normals ? &nd : nullptr);
+      x += rest_share_[v] * xd;
+      if (want_normals) nsum += rest_share_[v] * nd;
+    }
+    positions[v] = x;
+    if (want_normals) {
+      const double l = glm::length(nsum);
+      normals[v] = l > 0.0 ? nsum / l : nsum;
+    }
+  }
+}
+
+}  // namespace
+
+Status MakeSweepDeformer(const SkinRig& rig, const Vec3* rest_positions, const Vec3* rest_normals,
+                         const VertexWeights* influences, std::size_t count,
+                         const SweepOptions& options, std::unique_ptr<Deformer>* out) {
+  auto d = std::make_unique<SweepDeformer>();
+  const Status s = d->Build(rig, rest_positions, rest_normals, influences, count, options);
+  if (!s.ok()) return s;
+  *out = std::move(d);
+  return Status::Ok();
+}
+
+}  // namespace dermis
