@@ -19,8 +19,9 @@
 // Vertices are bound once in the bind pose (1.3): to each chain holding enough of their skin
 // weight, at the closest point of that chain's rest trajectory on the bones they are weighted
 // to, storing the offset in the start-transported frame. Several chains blend by weight; joints
-// on no chain (branch joints, and chain ends with several children) are deformed by DQS with
-// the vertex's original weights and blended in by their share (shape blending, sweep.md 2).
+// on no chain (branch joints, and the last joint of every chain, which has no bone: a hand, a head)
+// are deformed by DQS with the vertex's original weights and blended in by their share (shape
+// blending, sweep.md 2).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -261,16 +262,13 @@ void SweepDeformer::MakeChains(const SkinRig& rig) {
       c.joints.push_back(next);
       cur = next;
     }
-    const bool leaf_end = children[static_cast<std::size_t>(cur)].empty();
+    // The last joint has no bone of its own: its vertices (a hand, a head) ride with it by the
+    // DQS fallback, while its twist still spreads along the chain's last bone.
     const int id = static_cast<int>(chains_.size());
     const std::size_t bones = c.joints.size() - 1;
     for (std::size_t i = 0; i < bones; ++i) {
       chain_of_[static_cast<std::size_t>(c.joints[i])] = id;
       bone_of_[static_cast<std::size_t>(c.joints[i])] = static_cast<int>(i);
-    }
-    if (leaf_end) {
-      chain_of_[static_cast<std::size_t>(cur)] = id;
-      bone_of_[static_cast<std::size_t>(cur)] = static_cast<int>(bones);
     }
     const std::size_t nj = c.joints.size();
     c.s.assign(nj, 0.0);
