@@ -242,12 +242,15 @@ TEST_CASE("sweep: a rigid motion of the whole skeleton moves every vertex rigidl
 }
 
 TEST_CASE("sweep: outside the blend zones a vertex moves rigidly with its bone") {
-  // The fold clamp is off: at 150 degrees the inside of the forearm crosses the bisector plane
-  // up to 3.9 from the joint (1 / sin 15 degrees), a genuine self-intersection the clamp
-  // flattens (tested below).
+  // The fold clamp and the volume bump are off: at 150 degrees the inside of the forearm
+  // crosses the bisector plane up to 3.9 from the joint (1 / sin 15 degrees), a genuine
+  // self-intersection the clamp flattens, and the bump scales cross sections up to 4 radii
+  // from the joint by design (both tested below). What remains is the blend zone itself, at
+  // most 0.49 of the bone (1.96 here).
   const Tube t = MakeTube();
   SweepOptions o;
   o.clamp_folds = false;
+  o.preserve_volume = false;
   std::unique_ptr<Deformer> d;
   REQUIRE(MakeSweepDeformer(Chain3(), t.x.data(), t.n.data(), t.w.data(), t.x.size(), o, &d).ok());
   for (const double deg : {45.0, 90.0, 150.0}) {
@@ -256,11 +259,10 @@ TEST_CASE("sweep: outside the blend zones a vertex moves rigidly with its bone")
     REQUIRE(d->SetPose(palette.data()).ok());
     std::vector<Vec3> x(t.x.size());
     d->Deform(0, x.size(), x.data(), nullptr);
-    // The blend zone is about one radius (h = 1) and the volume bump 3 h around the joint at
-    // x = 4: the rings at x <= 0.75 follow joint 0, the rings at x >= 7.25 joint 1.
+    // The rings at x <= 2 follow joint 0, the rings at x >= 6 joint 1.
     for (std::size_t v = 0; v < x.size(); ++v) {
       const double px = t.x[v].x;
-      if (px > 0.75 && px < 7.25) continue;
+      if (px > 2.0 && px < 6.0) continue;
       const glm::dmat4& m = palette[px < 4.0 ? 0 : 1];
       CHECK(glm::length(x[v] - Vec3(m * glm::dvec4(t.x[v], 1.0))) < 1e-5 * 4.0);
     }
@@ -324,23 +326,31 @@ TEST_CASE("sweep: a twist spreads along the bone and never flips through 360 deg
   for (std::size_t v = 0; v < xs.size(); ++v) CHECK(glm::length(xs[v] - t.x[v]) < 1e-9);
 }
 
-TEST_CASE("sweep: the volume fix thickens a bent joint, the bisector clamp stops folds") {
+TEST_CASE("sweep: the volume fix thickens a bent joint, no fold past the bisector plane") {
   const Tube t = MakeTube();
   SweepOptions plain;
   plain.preserve_volume = false;
   plain.clamp_folds = false;
+  plain.grow_blend_with_bend = false;
+  SweepOptions grown = plain;  // the blend zone grows with the bend, no clamp
+  grown.grow_blend_with_bend = true;
   std::unique_ptr<Deformer> fixed, bare;
   REQUIRE(MakeSweepDeformer(Chain3(), t.x.data(), nullptr, t.w.data(), t.x.size(), SweepOptions{},
                             &fixed)
               .ok());
   REQUIRE(
       MakeSweepDeformer(Chain3(), t.x.data(), nullptr, t.w.data(), t.x.size(), plain, &bare).ok());
+  std::unique_ptr<Deformer> wide;
+  REQUIRE(
+      MakeSweepDeformer(Chain3(), t.x.data(), nullptr, t.w.data(), t.x.size(), grown, &wide).ok());
   const auto palette = BendPalette(120.0 * kPi / 180.0);
   REQUIRE(fixed->SetPose(palette.data()).ok());
   REQUIRE(bare->SetPose(palette.data()).ok());
-  std::vector<Vec3> a(t.x.size()), b(t.x.size());
+  REQUIRE(wide->SetPose(palette.data()).ok());
+  std::vector<Vec3> a(t.x.size()), b(t.x.size()), g(t.x.size());
   fixed->Deform(0, a.size(), a.data(), nullptr);
   bare->Deform(0, b.size(), b.data(), nullptr);
+  wide->Deform(0, g.size(), g.data(), nullptr);
   // The ring at the joint (x = 4): without the fix it keeps radius 1 around the arc midpoint
   // (thickness 2, like DQS); with it, wider.
   const std::size_t ring = 16 * 8;
@@ -352,14 +362,18 @@ TEST_CASE("sweep: the volume fix thickens a bent joint, the bisector clamp stops
   // every forearm point in front of it.
   const Vec3 t1(1, 0, 0), t2(std::cos(2 * kPi / 3), std::sin(2 * kPi / 3), 0);
   const Vec3 m = glm::normalize(t1 + t2);
-  int bare_crossed = 0;
+  int bare_crossed = 0, wide_crossed = 0;
   for (std::size_t v = 0; v < a.size(); ++v) {
     const double side = t.x[v].x < 4.0 ? 1.0 : -1.0;
     if (t.x[v].x == 4.0) continue;
     CHECK(side * glm::dot(a[v] - Vec3(4, 0, 0), m) <= 1e-12);
     if (side * glm::dot(b[v] - Vec3(4, 0, 0), m) > 1e-9) ++bare_crossed;
+    if (side * glm::dot(g[v] - Vec3(4, 0, 0), m) > 1e-9) ++wide_crossed;
   }
-  CHECK(bare_crossed > 0);  // the clamp has something to do at 120 degrees
+  // A fixed blend zone (h = r) folds at 120 degrees; one that grows with the bend
+  // (h = 1.1 r tan 60 degrees) does not, even without the clamp.
+  CHECK(bare_crossed > 0);
+  CHECK(wide_crossed == 0);
 }
 
 }  // namespace

@@ -45,7 +45,8 @@ struct ChainGeom {
   std::vector<Vec3> a, b;      // arc start (on bone j-1) and end (on bone j) per joint
   std::vector<Vec3> centre;    // arc centre per joint
   std::vector<glm::dquat> u;   // transport after joint j's arc, u[0] = identity, n + 1
-  std::vector<Vec3> bisector;  // unit (t[j-1] + t[j]) per joint
+  std::vector<Vec3> bisector;   // unit (t[j-1] + t[j]) per joint
+  std::vector<double> h;        // blend half-length per joint in rest arc length (0 at the ends)
 
   void Resize(std::size_t joints) {
     p.resize(joints);
@@ -57,6 +58,7 @@ struct ChainGeom {
     centre.resize(joints);
     u.assign(joints, glm::dquat(1.0, 0.0, 0.0, 0.0));
     bisector.assign(joints, Vec3(0.0));
+    h.assign(joints, 0.0);
   }
 };
 
@@ -65,10 +67,10 @@ struct Chain {
   std::vector<Index> joints;                 // J0..Jn (rig indices)
   std::vector<double> s;                     // rest arc length at each joint (polyline), n + 1
   std::vector<double> len;                   // rest bone lengths, n
-  std::vector<double> h;                     // blend half-length per joint (0 at the ends)
-  std::vector<double> w;                     // volume bump half-width per joint (0: no bump)
-  std::vector<double> in1, in2, out1, out2;  // bump integrals inside / outside the blend zone
-  std::vector<double> rest_c;                // arc compression c(theta) at rest per joint
+  std::vector<double> radius;  // skin radius around each interior joint
+  std::vector<double> h_base;  // blend half-length of a slight bend
+  std::vector<double> h_max;   // largest blend half-length (a share of the shorter bone)
+  std::vector<double> w;       // volume bump half-width per joint (0: no bump)
   std::vector<Vec3> t0;                      // rest bone directions
   ChainGeom rest;
   // Per-frame state (preallocated).
@@ -102,9 +104,28 @@ double Bump(double u, double w) {
   return x * x;
 }
 
-/// Arcs, transports and bisectors of a chain from its joint positions; `scale` maps rest
-/// blend half-lengths to posed ones per joint (bone stretch).
-void BuildGeom(const Chain& c, ChainGeom* g) {
+/// Integrals of the bump b(u) = sin^2(pi (u + w) / (2 w)) = (1 + cos(pi u / w)) / 2 and of b^2
+/// over [-a, a], a <= w (closed form).
+double BumpIntegral(double a, double w) { return a + (w / kPi) * std::sin(kPi * a / w); }
+double BumpSquaredIntegral(double a, double w) {
+  return 0.75 * a + (w / kPi) * std::sin(kPi * a / w) +
+         (w / (8.0 * kPi)) * std::sin(2.0 * kPi * a / w);
+}
+
+/// Blend half-length at joint j for bend theta (sweep.md 1.6): the arc radius h / tan(theta/2)
+/// must stay above the skin radius r for the cross sections not to cross inside the bend, so
+/// h grows as r tan(theta / 2) (with a 10 % margin) from its base value up to its cap.
+double BlendHalfLength(const Chain& c, std::size_t j, double theta, bool grow) {
+  double h = c.h_base[j];
+  if (grow && theta > kMinBend && theta < kPi) {
+    h = std::max(h, 1.1 * c.radius[j] * std::tan(0.5 * theta));
+  }
+  return std::min(h, c.h_max[j]);
+}
+
+/// Arcs, transports and bisectors of a chain from its joint positions (bone stretch scales
+/// the blend zone with the bones).
+void BuildGeom(const Chain& c, bool grow, ChainGeom* g) {
   const std::size_t n = c.bones();
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 d = g->p[i + 1] - g->p[i];
@@ -116,12 +137,13 @@ void BuildGeom(const Chain& c, ChainGeom* g) {
     const Vec3 t1 = g->t[j - 1], t2 = g->t[j];
     const double ratio_in = glm::length(g->p[j] - g->p[j - 1]) / c.len[j - 1];
     const double ratio_out = glm::length(g->p[j + 1] - g->p[j]) / c.len[j];
-    const double hp = c.h[j] * 0.5 * (ratio_in + ratio_out);
-    g->a[j] = g->p[j] - hp * t1;
-    g->b[j] = g->p[j] + hp * t2;
     const Vec3 cr = glm::cross(t1, t2);
     const double sin_t = glm::length(cr);
     const double theta = std::atan2(sin_t, glm::dot(t1, t2));
+    g->h[j] = BlendHalfLength(c, j, theta, grow);
+    const double hp = g->h[j] * 0.5 * (ratio_in + ratio_out);
+    g->a[j] = g->p[j] - hp * t1;
+    g->b[j] = g->p[j] + hp * t2;
     const Vec3 bis = t1 + t2;
     const double bl = glm::length(bis);
     g->bisector[j] = bl > 1e-12 ? bis / bl : t1;
@@ -154,13 +176,13 @@ void EvalTrajectory(const Chain& c, const ChainGeom& g, double s, Vec3* pos, Vec
   while (i + 1 < n && s >= c.s[i + 1]) ++i;
   // In the second half of joint i's arc?
   std::size_t j = 0;
-  if (i >= 1 && s < c.s[i] + c.h[i]) {
+  if (i >= 1 && s < c.s[i] + g.h[i]) {
     j = i;
-  } else if (i + 1 < n && s > c.s[i + 1] - c.h[i + 1]) {
+  } else if (i + 1 < n && s > c.s[i + 1] - g.h[i + 1]) {
     j = i + 1;
   }
-  if (j != 0 && c.h[j] > 0.0) {
-    const double f = (s - (c.s[j] - c.h[j])) / (2.0 * c.h[j]);
+  if (j != 0 && g.h[j] > 0.0) {
+    const double f = (s - (c.s[j] - g.h[j])) / (2.0 * g.h[j]);
     if (g.theta[j] > 0.0) {
       const glm::dquat r = glm::angleAxis(f * g.theta[j], g.axis[j]);
       *pos = g.centre[j] + r * (g.a[j] - g.centre[j]);
@@ -174,8 +196,8 @@ void EvalTrajectory(const Chain& c, const ChainGeom& g, double s, Vec3* pos, Vec
     return;
   }
   // Straight piece of bone i, from the end of joint i's arc to the start of joint i+1's.
-  const double s_from = c.s[i] + (i >= 1 ? c.h[i] : 0.0);
-  const double s_to = c.s[i + 1] - (i + 1 < n ? c.h[i + 1] : 0.0);
+  const double s_from = c.s[i] + (i >= 1 ? g.h[i] : 0.0);
+  const double s_to = c.s[i + 1] - (i + 1 < n ? g.h[i + 1] : 0.0);
   const Vec3 from = i >= 1 ? g.b[i] : g.p[0];
   const Vec3 to = i + 1 < n ? g.a[i + 1] : g.p[n];
   const double f = s_to > s_from ? (s - s_from) / (s_to - s_from) : 0.0;
@@ -281,13 +303,10 @@ void SweepDeformer::MakeChains(const SkinRig& rig) {
       c.t0[i] = d / c.len[i];
       c.s[i + 1] = c.s[i] + c.len[i];
     }
-    c.h.assign(nj, 0.0);
+    c.radius.assign(nj, 0.0);
+    c.h_base.assign(nj, 0.0);
+    c.h_max.assign(nj, 0.0);
     c.w.assign(nj, 0.0);
-    c.in1.assign(nj, 0.0);
-    c.in2.assign(nj, 0.0);
-    c.out1.assign(nj, 0.0);
-    c.out2.assign(nj, 0.0);
-    c.rest_c.assign(nj, 1.0);
     c.tau.assign(nj, 0.0);
     c.k.assign(nj, 0.0);
     c.rest.Resize(nj);
@@ -367,27 +386,17 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
         radius = r[std::min(r.size() - 1,
                             static_cast<std::size_t>(0.9 * static_cast<double>(r.size())))];
       }
-      c.h[j] = std::min(o.blend_radius_factor * radius, o.max_blend_fraction * shorter);
-      if (o.preserve_volume && c.h[j] > 0.0) {
-        // The bump may not reach past the chain's ends.
-        c.w[j] = std::min(o.volume_width_factor * c.h[j], std::min(c.s[j], c.length() - c.s[j]));
-        c.w[j] = std::max(c.w[j], c.h[j]);
-        const int steps = 512;
-        const double du = 2.0 * c.w[j] / steps;
-        for (int q = 0; q < steps; ++q) {
-          const double u = -c.w[j] + (q + 0.5) * du;
-          const double b = Bump(u, c.w[j]);
-          if (std::fabs(u) < c.h[j]) {
-            c.in1[j] += b * du, c.in2[j] += b * b * du;
-          } else {
-            c.out1[j] += b * du, c.out2[j] += b * b * du;
-          }
-        }
+      c.radius[j] = radius;
+      c.h_max[j] = o.max_blend_fraction * shorter;
+      c.h_base[j] = std::min(o.blend_radius_factor * radius, c.h_max[j]);
+      if (o.preserve_volume && c.h_base[j] > 0.0) {
+        // Wide enough for the largest blend zone, not past the chain's ends.
+        c.w[j] = std::max(o.volume_width_factor * c.h_base[j], c.h_max[j]);
+        c.w[j] = std::min(c.w[j], std::min(c.s[j], c.length() - c.s[j]));
+        c.w[j] = std::max(c.w[j], c.h_max[j]);
       }
     }
-    BuildGeom(c, &c.rest);
-    for (std::size_t j = 1; j + 1 < c.joints.size(); ++j)
-      c.rest_c[j] = ArcCompression(c.rest.theta[j]);
+    BuildGeom(c, o.grow_blend_with_bend, &c.rest);
   }
 
   // Bind every vertex.
@@ -516,7 +525,7 @@ Status SweepDeformer::SetPose(const glm::dmat4* m) {
       const std::size_t j = static_cast<std::size_t>(c.joints[i]);
       c.pose.p[i] = Vec3(m[j] * glm::dvec4(bind_position_[j], 1.0));
     }
-    BuildGeom(c, &c.pose);
+    BuildGeom(c, options_.grow_blend_with_bend, &c.pose);
     c.q0 = pose_rotation_[static_cast<std::size_t>(c.joints[0])];
     // Twists: the residue of each joint's rotation against the transported frame.
     for (std::size_t i = 0; i < nj; ++i) {
@@ -531,15 +540,21 @@ Status SweepDeformer::SetPose(const glm::dmat4* m) {
       c.tau[i] = tau;
     }
     c.prev_tau.assign(c.tau.begin(), c.tau.end());
-    // Volume: bump heights solving  int (1 + k b)^2 c ds = rest volume of the zone.
+    // Volume: bump heights solving  int (1 + k b)^2 c ds = the zone's rest volume, where the
+    // arc compresses [s_j - h, s_j + h] by c(theta) (Pappus), in closed form.
     for (std::size_t j = 1; j + 1 < nj; ++j) {
       c.k[j] = 0.0;
-      if (!(c.w[j] > 0.0)) continue;
-      const double cc = ArcCompression(c.pose.theta[j]);
-      const double qa = cc * c.in2[j] + c.out2[j];
-      const double qb = cc * c.in1[j] + c.out1[j];
-      const double target = c.rest_c[j] * 2.0 * c.h[j] + 2.0 * (c.w[j] - c.h[j]);
-      const double qc = cc * 2.0 * c.h[j] + 2.0 * (c.w[j] - c.h[j]) - target;
+      const double w = c.w[j];
+      if (!(w > 0.0)) continue;
+      const double hp = std::min(c.pose.h[j], w), hr = std::min(c.rest.h[j], w);
+      const double cp = ArcCompression(c.pose.theta[j]);
+      const double cr = ArcCompression(c.rest.theta[j]);
+      const double i1 = BumpIntegral(hp, w), i2 = BumpSquaredIntegral(hp, w);
+      const double f1 = BumpIntegral(w, w), f2 = BumpSquaredIntegral(w, w);
+      const double qa = cp * i2 + (f2 - i2);
+      const double qb = cp * i1 + (f1 - i1);
+      const double target = cr * 2.0 * hr + 2.0 * (w - hr);
+      const double qc = cp * 2.0 * hp + 2.0 * (w - hp) - target;
       const double disc = qb * qb - qa * qc;
       if (qa > 0.0 && disc >= 0.0) c.k[j] = (-qb + std::sqrt(disc)) / qa;
     }

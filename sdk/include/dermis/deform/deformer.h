@@ -99,15 +99,20 @@ Status MakeDqsDeformer(const SkinRig& rig, const Vec3* rest_positions, const Vec
 struct SweepOptions {
   /// Cross-section stations per bone (rest arc length sampled uniformly per bone).
   int stations_per_bone = 16;
-  /// Blend-zone half-length at a joint = clamp(blend_radius_factor * r, ..) with r the mean
-  /// distance of the joint's bound vertices from the bone line; at most max_blend_fraction of
-  /// the shorter adjacent bone.
+  /// Blend half-length at a joint: blend_radius_factor * r, with r the skin radius there (the
+  /// 90th percentile of the distance from the bone polyline of the vertices weighted to the
+  /// chain within half the shorter bone of the joint), at most max_blend_fraction of the
+  /// shorter adjacent bone.
   double blend_radius_factor = 1.0;
-  double max_blend_fraction = 0.45;
+  double max_blend_fraction = 0.49;
+  /// Let the blend half-length grow with the bend as 1.1 r tan(theta / 2), so the arc radius
+  /// stays above the skin radius and cross sections do not cross inside the bend (up to the
+  /// cap above).
+  bool grow_blend_with_bend = true;
   /// Volume correction: a sin^2 bump of half-width volume_width_factor * h scales the cross
   /// sections so that the swept volume of the zone is kept (Pappus); false: no correction.
   bool preserve_volume = true;
-  double volume_width_factor = 3.0;
+  double volume_width_factor = 4.0;
   /// Clamp vertices on the inside of a bend against the joint's bisector plane.
   bool clamp_folds = true;
   /// A vertex is bound to a single chain when that chain holds at least this share of its
