@@ -45,8 +45,8 @@ struct ChainGeom {
   std::vector<Vec3> a, b;      // arc start (on bone j-1) and end (on bone j) per joint
   std::vector<Vec3> centre;    // arc centre per joint
   std::vector<glm::dquat> u;   // transport after joint j's arc, u[0] = identity, n + 1
-  std::vector<Vec3> bisector;   // unit (t[j-1] + t[j]) per joint
-  std::vector<double> h;        // blend half-length per joint in rest arc length (0 at the ends)
+  std::vector<Vec3> bisector;  // unit (t[j-1] + t[j]) per joint
+  std::vector<double> h;       // blend half-length per joint in rest arc length (0 at the ends)
 
   void Resize(std::size_t joints) {
     p.resize(joints);
@@ -64,14 +64,14 @@ struct ChainGeom {
 
 /// What a chain keeps from the bind pose.
 struct Chain {
-  std::vector<Index> joints;                 // J0..Jn (rig indices)
-  std::vector<double> s;                     // rest arc length at each joint (polyline), n + 1
-  std::vector<double> len;                   // rest bone lengths, n
+  std::vector<Index> joints;   // J0..Jn (rig indices)
+  std::vector<double> s;       // rest arc length at each joint (polyline), n + 1
+  std::vector<double> len;     // rest bone lengths, n
   std::vector<double> radius;  // skin radius around each interior joint
   std::vector<double> h_base;  // blend half-length of a slight bend
   std::vector<double> h_max;   // largest blend half-length (a share of the shorter bone)
   std::vector<double> w;       // volume bump half-width per joint (0: no bump)
-  std::vector<Vec3> t0;                      // rest bone directions
+  std::vector<Vec3> t0;        // rest bone directions
   ChainGeom rest;
   // Per-frame state (preallocated).
   ChainGeom pose;
