@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "dermis/asset/asset.h"
 #include "dermis/offline/domain_builder.h"
 #include "dermis/offline/polygon_mesh.h"
 #include "dermis/surface/displacement.h"
@@ -25,6 +26,16 @@ PolygonMesh Builtin(const std::string& name);
 
 /// Builds the control surface, failing the test on error.
 ControlSurface Build(const PolygonMesh& mesh, const DomainOptions& options = DomainOptions{});
+
+/// Appends a closed capsule to `prim` (which must have one JOINTS/WEIGHTS set and one TEXCOORD
+/// set): a cylinder along y in [0, 2] with hemispherical caps, radius 0.5, whose side and caps
+/// have their own vertices (split at the junctions, as UV seams do), skinned to joints 0 and 1
+/// with smoothstep weights over y in [0.7, 1.3]. Placed at x0 along x.
+void AddCylinder(double x0, AssetPrimitive* prim);
+
+/// Two capsules (two components) and a lone triangle (too small to fit) in one mesh drawn by a
+/// skinned node; skeleton root -> j0 (at the origin) -> j1 (at y = 1), both joints of the skin.
+Asset TwoCylinders();
 
 /// Deterministic uniform numbers in [0, 1).
 class Lcg {

@@ -13,17 +13,12 @@
 #include "dermis/surface/bspline_displacement.h"
 #include "dermis/surface/surface_evaluator.h"
 #include "dermis/surface/tessellation.h"
+#include "offline/character_eval.h"
 
 namespace dermis {
 namespace {
 
-/// What evaluating one part needs: its rest patches and the displacement to use.
-struct PartEval {
-  std::vector<LocalPatch> patches;
-  std::unique_ptr<TruncatedDisplacement> truncated;
-  const Displacement* displacement = nullptr;
-  double orientation = 1.0;  ///< -1 if the surface normal faces against the source triangles.
-};
+using character::PartEval;
 
 /// The original triangles of one part: primitive and its three vertex indices.
 struct PartTriangle {
@@ -49,7 +44,25 @@ std::vector<PartTriangle> PartTriangles(const Character& ch, Index part) {
   return out;
 }
 
-Status MakeEval(const Character& ch, Index part_index, int levels, PartEval* e) {
+glm::vec3 ToFloat(const Vec3& v) { return glm::vec3(v); }
+
+/// A unit tangent orthogonal to n, keeping the old tangent's direction where it can.
+glm::vec4 Reorthogonalise(const glm::vec4& tangent, const glm::vec3& n) {
+  glm::vec3 t = glm::vec3(tangent) - n * glm::dot(n, glm::vec3(tangent));
+  float len = glm::length(t);
+  if (!(len > 1e-6f)) {
+    t = std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0))
+                             : glm::cross(n, glm::vec3(0, 1, 0));
+    len = glm::length(t);
+  }
+  return glm::vec4(t / len, tangent.w < 0.0f ? -1.0f : 1.0f);
+}
+
+}  // namespace
+
+namespace character {
+
+Status MakePartEval(const Character& ch, Index part_index, int levels, PartEval* e) {
   const CharacterPart& part = ch.parts[static_cast<std::size_t>(part_index)];
   const DisplacedSurface& s = part.surface;
   e->patches.resize(s.rest_positions.size());
@@ -84,21 +97,7 @@ Status MakeEval(const Character& ch, Index part_index, int levels, PartEval* e) 
   return Status::Ok();
 }
 
-glm::vec3 ToFloat(const Vec3& v) { return glm::vec3(v); }
-
-/// A unit tangent orthogonal to n, keeping the old tangent's direction where it can.
-glm::vec4 Reorthogonalise(const glm::vec4& tangent, const glm::vec3& n) {
-  glm::vec3 t = glm::vec3(tangent) - n * glm::dot(n, glm::vec3(tangent));
-  float len = glm::length(t);
-  if (!(len > 1e-6f)) {
-    t = std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0))
-                             : glm::cross(n, glm::vec3(0, 1, 0));
-    len = glm::length(t);
-  }
-  return glm::vec4(t / len, tangent.w < 0.0f ? -1.0f : 1.0f);
-}
-
-}  // namespace
+}  // namespace character
 
 Status BuildBoundAsset(const Character& ch, const CharacterExportOptions& options, Asset* out) {
   if (ch.asset.meshes.empty()) {
@@ -107,7 +106,8 @@ Status BuildBoundAsset(const Character& ch, const CharacterExportOptions& option
   }
   std::vector<PartEval> evals(ch.parts.size());
   for (std::size_t k = 0; k < ch.parts.size(); ++k) {
-    Status s = MakeEval(ch, static_cast<Index>(k), options.displacement_levels, &evals[k]);
+    Status s =
+        character::MakePartEval(ch, static_cast<Index>(k), options.displacement_levels, &evals[k]);
     if (!s.ok()) return s;
   }
   Asset a = ch.asset;
@@ -160,6 +160,14 @@ Status BuildBoundAsset(const Character& ch, const CharacterExportOptions& option
 
 Status BuildLodAsset(const Character& ch, const CharacterExportOptions& options, Asset* out,
                      std::vector<std::string>* notes) {
+  return character::BuildLodAssetWithSources(ch, options, out, notes, nullptr);
+}
+
+namespace character {
+
+Status BuildLodAssetWithSources(const Character& ch, const CharacterExportOptions& options,
+                                Asset* out, std::vector<std::string>* notes,
+                                SurfaceSources* sources) {
   if (options.level < 1 || options.level > 64) {
     return Status::InvalidInput("tessellation level must be in 1..64");
   }
@@ -210,11 +218,17 @@ Status BuildLodAsset(const Character& ch, const CharacterExportOptions& options,
     if (a.scenes.empty()) a.scenes.emplace_back(), a.default_scene = 0;
     a.scenes[0].nodes.push_back(static_cast<Index>(a.nodes.size() - 1));
   }
+  if (sources != nullptr) {
+    sources->assign(a.meshes.size(), {});
+    for (std::size_t m = 0; m < a.meshes.size(); ++m) {
+      (*sources)[m].resize(a.meshes[m].primitives.size());
+    }
+  }
   Index plain_mesh = static_cast<Index>(ch.asset.meshes.size());
   for (std::size_t k = 0; k < ch.parts.size(); ++k) {
     const CharacterPart& part = ch.parts[k];
     PartEval e;
-    Status s = MakeEval(ch, static_cast<Index>(k), options.displacement_levels, &e);
+    Status s = MakePartEval(ch, static_cast<Index>(k), options.displacement_levels, &e);
     if (!s.ok()) return s;
     const DisplacedSurface& surf = part.surface;
     TessellationPattern pattern;
@@ -296,11 +310,21 @@ Status BuildLodAsset(const Character& ch, const CharacterExportOptions& options,
       }
     }
     a.meshes[static_cast<std::size_t>(mesh_index)].primitives.push_back(std::move(prim));
+    if (sources != nullptr) {
+      std::vector<VertexBinding> located(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        located[i] = {static_cast<Index>(k), pattern.samples[i].face, pattern.samples[i].u,
+                      pattern.samples[i].v};
+      }
+      (*sources)[static_cast<std::size_t>(mesh_index)].push_back(std::move(located));
+    }
   }
   // Meshes left with no primitive at all are not valid glTF; none can occur unless a mesh had
   // only fitted triangles and no part, which fitting never produces.
   *out = std::move(a);
   return Status::Ok();
 }
+
+}  // namespace character
 
 }  // namespace dermis
