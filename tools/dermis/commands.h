@@ -21,6 +21,9 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run);
 /// Registers `export`.
 void AddExportCommand(CLI::App* app, std::function<int()>* run);
 
+/// Registers `animate`.
+void AddAnimateCommand(CLI::App* app, std::function<int()>* run);
+
 /// Registers `inspect`.
 void AddInspectCommand(CLI::App* app, std::function<int()>* run);
 

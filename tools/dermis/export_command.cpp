@@ -1,17 +1,21 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // dermis export: a fitted character (.dsurf) -> skinned glTF, either the original topology
-// evaluated on the displaced surface (bound) or the tessellated surface (lod).
+// evaluated on the displaced surface (bound) or the tessellated surface (lod); with
+// --bake-sweep, every clip posed by a deformer of the control vertices and baked into morph
+// targets of a static mesh.
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "character_args.h"
 #include "commands.h"
-#include "dermis/core/file_bytes.h"
 #include "dermis/offline/character.h"
 #include "dermis/offline/character_export.h"
+#include "dermis/offline/character_pose.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/plugins/import.h"
 
@@ -26,8 +30,49 @@ struct ExportArgs {
   int displacement_levels = -1;
   bool embed = false;
   int max_influences = 4;
+  bool bake = false;
+  double fps = kDefaultPoseStepsPerSecond;
+  std::string deformer = "sweep";
+  int threads = 0;
   bool quiet = false;
 };
+
+/// Vertex-frames above which the bake warns (24 bytes each: about 400 MB).
+constexpr std::uint64_t kLargeBake = std::uint64_t{1} << 24;
+
+/// The posed and baked asset of --bake-sweep.
+Status Bake(const ExportArgs& a, const Character& ch, Asset* out, CharacterBakeReport* report) {
+  CharacterPoseOptions options;
+  options.deformer = DeformerFromName(a.deformer);
+  options.mode = PoseModeFromName(a.mode);
+  options.level = a.level;
+  options.displacement_levels = a.displacement_levels;
+  options.threads = a.threads;
+  CharacterPoser poser;
+  Status s = CharacterPoser::Build(ch, options, &poser);
+  if (!s.ok()) return s;
+  if (!a.quiet) {
+    std::uint64_t frames = 0, vertices = 0;
+    for (const AssetAnimation& clip : poser.asset().animations) {
+      frames += ClipStepTimes(clip.Duration(), a.fps).size();
+    }
+    for (const DrawnPrimitive& d : poser.drawn()) {
+      vertices += poser.asset()
+                      .meshes[static_cast<std::size_t>(d.mesh)]
+                      .primitives[static_cast<std::size_t>(d.primitive)]
+                      .positions.size();
+    }
+    if (frames * vertices > kLargeBake) {
+      std::fprintf(stderr,
+                   "dermis export: warning: baking %llu frames of %llu vertices: about %.0f MB "
+                   "of morph targets (lower --fps, or use --mode lod with a small --level)\n",
+                   static_cast<unsigned long long>(frames),
+                   static_cast<unsigned long long>(vertices),
+                   24.0 * static_cast<double>(frames * vertices) / 1e6);
+    }
+  }
+  return BuildBakedAsset(&poser, a.fps, out, report);
+}
 
 int Fail(const Status& s) {
   std::fprintf(stderr, "dermis export: error: %s\n", s.message().c_str());
@@ -41,22 +86,18 @@ int RunExport(const ExportArgs& a) {
     return kExitUsage;
   }
   std::string bytes;
-  Status s = ReadFileBytes(a.input, "a .dsurf file", &bytes);
-  if (!s.ok()) return Fail(s);
   Character ch;
-  const std::uint32_t version = DsurfFileVersion(bytes);
-  if (version == 1) {
-    s = ReadCharacter(a.input, &ch);
-  } else {
-    s = ParseCharacter(bytes, a.input, &ch);
-  }
+  Status s = ReadCharacterFile(a.input, &bytes, &ch);
   if (!s.ok()) return Fail(s);
   CharacterExportOptions options;
   options.level = a.level;
   options.displacement_levels = a.displacement_levels;
   Asset out;
   std::vector<std::string> notes;
-  if (a.mode == "bound") {
+  CharacterBakeReport baked;
+  if (a.bake) {
+    s = Bake(a, ch, &out, &baked);
+  } else if (a.mode == "bound") {
     s = BuildBoundAsset(ch, options, &out);
   } else {
     s = BuildLodAsset(ch, options, &out, &notes);
@@ -79,11 +120,25 @@ int RunExport(const ExportArgs& a) {
     for (const AssetMesh& m : out.meshes) {
       for (const AssetPrimitive& p : m.primitives) vertices += p.positions.size();
     }
-    std::fprintf(
-        stderr,
-        "dermis export: %s mode, %zu meshes, %zu vertices, %zu skins, %zu clips%s\nwrote %s\n",
-        a.mode.c_str(), out.meshes.size(), vertices, out.skins.size(), out.animations.size(),
-        a.embed ? ", .dsurf embedded" : "", a.output.c_str());
+    if (a.bake) {
+      std::string frames;
+      for (std::size_t c = 0; c < baked.frames.size(); ++c) {
+        frames += (c ? ", " : "") + std::to_string(baked.frames[c]);
+      }
+      std::fprintf(stderr,
+                   "dermis export: %s mode baked with the %s deformer at %g fps: %zu clips (%s "
+                   "frames), %zu morph targets on %zu meshes of %zu vertices, no skin%s\nwrote "
+                   "%s\n",
+                   a.mode.c_str(), a.deformer.c_str(), a.fps, out.animations.size(), frames.c_str(),
+                   baked.targets, out.meshes.size(), vertices, a.embed ? ", .dsurf embedded" : "",
+                   a.output.c_str());
+    } else {
+      std::fprintf(
+          stderr,
+          "dermis export: %s mode, %zu meshes, %zu vertices, %zu skins, %zu clips%s\nwrote %s\n",
+          a.mode.c_str(), out.meshes.size(), vertices, out.skins.size(), out.animations.size(),
+          a.embed ? ", .dsurf embedded" : "", a.output.c_str());
+    }
   }
   return kExitOk;
 }
@@ -115,6 +170,21 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_flag("--embed", args->embed,
                 "Store the .dsurf in the glTF (extension DERMIS_displaced_surface) so that "
                 "'dermis fit' reads it back losslessly");
+  cmd->add_flag("--bake-sweep", args->bake,
+                "Pose every clip with --deformer at --fps and bake the motion into morph targets "
+                "of static meshes in world space (no skin; one weights animation per clip), so "
+                "that any glTF viewer plays exactly the deformer's motion");
+  cmd->add_option("--fps", args->fps, "--bake-sweep: frames per second of the bake")
+      ->check(CLI::Range(0.001, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--deformer", args->deformer,
+                  "--bake-sweep: deformer of the control vertices (sweep, lbs or dqs)")
+      ->check(CLI::IsMember(kDeformerNames))
+      ->capture_default_str();
+  cmd->add_option("--threads", args->threads,
+                  "--bake-sweep: threads (0: all cores); results do not vary")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   cmd->callback([run, args]() { *run = [args]() { return RunExport(*args); }; });
 }

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("dermis ") + DERMIS_VERSION);
   app.require_subcommand(1);
   std::function<int()> run;
+  dermis::cli::AddAnimateCommand(&app, &run);
   dermis::cli::AddExportCommand(&app, &run);
   dermis::cli::AddFitCommand(&app, &run);
   dermis::cli::AddInspectCommand(&app, &run);

@@ -1,0 +1,158 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The morph-target bake of the shared Khronos characters (issue 5's acceptance test): fit ->
+// CharacterPoser (sweep, LBS, DQS) -> BuildBakedAsset -> ExportGltf, then judged from outside:
+// the Khronos glTF-Validator (no errors, no warnings) and three.js playing the baked file,
+// whose vertex positions at sampled frame times must match the poser's (what `dermis animate`
+// writes) within float32 rounding.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dermis/offline/character.h"
+#include "dermis/offline/character_fit.h"
+#include "dermis/offline/character_pose.h"
+#include "dermis/plugins/gltf.h"
+#include "support/external_checks.h"
+
+namespace dermis {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+
+/// Largest distance between three.js's positions of the baked file and the poser's, and the
+/// bounding-box diagonal of the poser's.
+double BakeDifference(const CharacterPoser& poser, const std::vector<PosedPrimitive>& posed,
+                      const std::map<std::pair<int, int>, std::vector<double>>& three,
+                      double* diagonal) {
+  const std::vector<DrawnPrimitive>& drawn = poser.drawn();
+  REQUIRE(three.size() == drawn.size());
+  glm::dvec3 lo(1e300), hi(-1e300);
+  double worst = 0.0;
+  int node = -1;
+  for (std::size_t d = 0; d < drawn.size(); ++d) {
+    if (d == 0 || drawn[d - 1].node != drawn[d].node) ++node;  // BuildPosedAsset's nodes
+    INFO("baked node " << node << " primitive " << drawn[d].primitive);
+    const auto it = three.find({node, static_cast<int>(drawn[d].primitive)});
+    REQUIRE(it != three.end());
+    REQUIRE(it->second.size() == 3 * posed[d].positions.size());
+    for (std::size_t v = 0; v < posed[d].positions.size(); ++v) {
+      const glm::dvec3 theirs(it->second[3 * v], it->second[3 * v + 1], it->second[3 * v + 2]);
+      worst = std::max(worst, glm::length(theirs - posed[d].positions[v]));
+      lo = glm::min(lo, posed[d].positions[v]);
+      hi = glm::max(hi, posed[d].positions[v]);
+    }
+  }
+  *diagonal = glm::length(hi - lo);
+  return worst;
+}
+
+void CheckBake(const std::string& name) {
+  const std::string source = std::string(test::kSharedGltfDir) + name;
+  if (!fs::exists(source)) {
+    WARN("skipped: " << source << " is absent (../shared/data)");
+    return;
+  }
+  if (!test::JsToolsReady()) return;
+  INFO(name);
+  TempDir tmp("dermis_bake");
+  Asset asset;
+  Status s = ImportGltf(source, &asset);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  CharacterFitOptions fit_options;
+  fit_options.fit.threads = 2;
+  Character ch;
+  s = FitCharacter(asset, fit_options, &ch, nullptr);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  REQUIRE(!ch.asset.animations.empty());
+
+  const double fps = kDefaultPoseStepsPerSecond;
+  for (const DeformerKind kind : {DeformerKind::kSweep, DeformerKind::kLbs, DeformerKind::kDqs}) {
+    INFO(DeformerName(kind));
+    CharacterPoseOptions options;
+    options.deformer = kind;
+    options.threads = 2;
+    CharacterPoser poser;
+    s = CharacterPoser::Build(ch, options, &poser);
+    INFO(s.message());
+    REQUIRE(s.ok());
+    Asset baked;
+    CharacterBakeReport report;
+    s = BuildBakedAsset(&poser, fps, &baked, &report);
+    INFO(s.message());
+    REQUIRE(s.ok());
+    const std::string file = tmp.File(std::string("baked_") + DeformerName(kind) + ".glb");
+    GltfExportOptions gltf;
+    s = ExportGltf(baked, gltf, file);
+    INFO(s.message());
+    REQUIRE(s.ok());
+    const test::ValidatorReport validation = test::Validate(file, tmp);
+    INFO(test::Messages(validation));
+    CHECK(validation.errors == 0);
+    CHECK(validation.warnings == 0);
+    Asset back;
+    s = ImportGltf(file, &back);
+    INFO(s.message());
+    REQUIRE(s.ok());
+    REQUIRE(back.meshes.size() == baked.meshes.size());
+    CHECK(back.meshes[0].primitives[0].targets.size() == report.targets);
+    CHECK(back.animations.size() == ch.asset.animations.size());
+    CHECK(back.skins.empty());
+
+    // three.js plays the baked file: at rest, and at the first, a middle and the last frame of
+    // every clip; the poser posed at those times (the bake's own steps) must agree.
+    double worst_relative = 0.0;
+    for (int clip = -1; clip < static_cast<int>(ch.asset.animations.size()); ++clip) {
+      const std::vector<double> frames =
+          clip < 0
+              ? std::vector<double>{0.0}
+              : ClipStepTimes(ch.asset.animations[static_cast<std::size_t>(clip)].Duration(), fps);
+      std::vector<std::size_t> picks = {0, (frames.size() * 37) / 100, frames.size() - 1};
+      picks.erase(std::unique(picks.begin(), picks.end()), picks.end());
+      for (const std::size_t k : picks) {
+        const double t = frames[k];
+        INFO("clip " << clip << " frame " << k << " t = " << t);
+        std::vector<PosedPrimitive> posed;
+        s = poser.PoseClip(clip, t, fps, &posed);
+        INFO(s.message());
+        REQUIRE(s.ok());
+        const auto three = test::ThreePose(file, clip, t, tmp);
+        double diagonal = 0.0;
+        const double worst = BakeDifference(poser, posed, three, &diagonal);
+        CHECK(diagonal > 0.0);
+        CHECK(worst < 1e-5 * diagonal);
+        worst_relative = std::max(worst_relative, worst / diagonal);
+      }
+    }
+    std::printf(
+        "%-18s %-5s %zu clips, %4zu frames, %5zu vertices: %8.3f MB, validator %d errors %d "
+        "warnings, three.js vs poser max %.2g of the diagonal\n",
+        name.c_str(), DeformerName(kind), report.frames.size(), report.targets, report.vertices,
+        static_cast<double>(fs::file_size(file)) / 1e6, validation.errors, validation.warnings,
+        worst_relative);
+  }
+}
+
+TEST_CASE("bake: SimpleSkin baked and played by three.js", "[bake][data]") {
+  CheckBake("SimpleSkin.gltf");
+}
+TEST_CASE("bake: RiggedSimple baked and played by three.js", "[bake][data]") {
+  CheckBake("RiggedSimple.glb");
+}
+TEST_CASE("bake: RiggedFigure baked and played by three.js", "[bake][data]") {
+  CheckBake("RiggedFigure.glb");
+}
+TEST_CASE("bake: Fox baked and played by three.js", "[bake][data]") { CheckBake("Fox.glb"); }
+TEST_CASE("bake: CesiumMan baked and played by three.js", "[bake][data]") {
+  CheckBake("CesiumMan.glb");
+}
+
+}  // namespace
+}  // namespace dermis

@@ -1,0 +1,259 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// dermis animate: a fitted character (.dsurf) posed at one time of one clip: the control
+// vertices deformed (sweep, LBS or DQS), the patches refitted, the displaced surface evaluated at
+// the bound vertices or a tessellation, written in world space as OBJ or as a static glTF.
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "character_args.h"
+#include "commands.h"
+#include "dermis/offline/character_pose.h"
+#include "dermis/offline/obj_io.h"
+#include "dermis/offline/skin_transfer.h"
+#include "dermis/plugins/gltf.h"
+#include "dermis/plugins/import.h"
+
+namespace dermis::cli {
+namespace {
+
+struct AnimateArgs {
+  std::string input;
+  std::string output;
+  std::string clip;  // name or index; empty: clip 0, or the rest pose without clips
+  double time = 0.0;
+  bool time_given = false;
+  std::string deformer = "sweep";
+  std::string mode = "bound";
+  int level = 4;
+  int displacement_levels = -1;
+  double fps = kDefaultPoseStepsPerSecond;
+  int threads = 0;
+  bool quiet = false;
+};
+
+int Fail(const Status& s) {
+  std::fprintf(stderr, "dermis animate: error: %s\n", s.message().c_str());
+  return kExitFailure;
+}
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  for (std::size_t i = 0; i < suffix.size(); ++i) {
+    const char c = s[s.size() - suffix.size() + i];
+    if (std::tolower(static_cast<unsigned char>(c)) != suffix[i]) return false;
+  }
+  return true;
+}
+
+/// Shortest decimal form that reads back to the same double.
+std::string FormatSeconds(double t) {
+  char buffer[64];
+  const auto r = std::to_chars(buffer, buffer + sizeof(buffer), t);
+  return std::string(buffer, r.ptr);
+}
+
+std::string ClipList(const Asset& asset) {
+  if (asset.animations.empty()) return "it has no clips";
+  std::string list = "clips:";
+  for (std::size_t c = 0; c < asset.animations.size(); ++c) {
+    list += (c ? ", " : " ") + std::to_string(c) + " '" + asset.animations[c].name + "'";
+  }
+  return list;
+}
+
+/// The clip named by `arg` (a name first, then an index; "rest": the rest pose, -1).
+Status ResolveClip(const Asset& asset, const std::string& input, const std::string& arg,
+                   int* clip) {
+  if (arg.empty()) {
+    *clip = asset.animations.empty() ? -1 : 0;
+    return Status::Ok();
+  }
+  for (std::size_t c = 0; c < asset.animations.size(); ++c) {
+    if (asset.animations[c].name == arg) {
+      *clip = static_cast<int>(c);
+      return Status::Ok();
+    }
+  }
+  if (arg == "rest") {
+    *clip = -1;
+    return Status::Ok();
+  }
+  int index = -1;
+  const auto r = std::from_chars(arg.data(), arg.data() + arg.size(), index);
+  if (r.ec == std::errc() && r.ptr == arg.data() + arg.size() && index >= 0 &&
+      static_cast<std::size_t>(index) < asset.animations.size()) {
+    *clip = index;
+    return Status::Ok();
+  }
+  return Status::InvalidInput(input + ": no clip '" + arg + "' (" + ClipList(asset) + ")");
+}
+
+/// Every triangle of the posed primitives as one OBJ (points and lines are not written).
+Status WritePosedObj(const std::string& path, const CharacterPoser& poser,
+                     const std::vector<PosedPrimitive>& posed, const std::string& header,
+                     std::size_t* skipped) {
+  std::vector<Vec3> positions, normals;
+  std::vector<std::uint32_t> triangles;
+  *skipped = 0;
+  for (std::size_t d = 0; d < posed.size(); ++d) {
+    const DrawnPrimitive& dp = poser.drawn()[d];
+    const AssetPrimitive& prim = poser.asset()
+                                     .meshes[static_cast<std::size_t>(dp.mesh)]
+                                     .primitives[static_cast<std::size_t>(dp.primitive)];
+    const std::vector<std::uint32_t> tris = PrimitiveTriangles(prim);
+    if (tris.empty()) {
+      ++*skipped;
+      continue;
+    }
+    const auto base = static_cast<std::uint32_t>(positions.size());
+    positions.insert(positions.end(), posed[d].positions.begin(), posed[d].positions.end());
+    normals.insert(normals.end(), posed[d].normals.begin(), posed[d].normals.end());
+    for (const std::uint32_t i : tris) triangles.push_back(base + i);
+  }
+  return WriteObj(path, positions, normals, triangles, header);
+}
+
+int RunAnimate(const AnimateArgs& a) {
+  const bool obj = EndsWith(a.output, ".obj");
+  if (!obj && !IsGltfPath(a.output)) {
+    std::fprintf(stderr,
+                 "dermis animate: error: %s: the output must be .obj, .glb or .gltf\n"
+                 "Run 'dermis animate --help' for usage.\n",
+                 a.output.c_str());
+    return kExitUsage;
+  }
+  std::string bytes;
+  Character ch;
+  Status s = ReadCharacterFile(a.input, &bytes, &ch);
+  if (!s.ok()) return Fail(s);
+  int clip = -1;
+  s = ResolveClip(ch.asset, a.input, a.clip, &clip);
+  if (!s.ok()) return Fail(s);
+  if (clip < 0 && a.time_given && a.time != 0.0) {
+    return Fail(Status::InvalidInput(
+        a.input + ": --time applies to a clip, not to the rest pose (" + ClipList(ch.asset) + ")"));
+  }
+  CharacterPoseOptions options;
+  options.deformer = DeformerFromName(a.deformer);
+  options.mode = PoseModeFromName(a.mode);
+  options.level = a.level;
+  options.displacement_levels = a.displacement_levels;
+  options.threads = a.threads;
+  CharacterPoser poser;
+  s = CharacterPoser::Build(ch, options, &poser);
+  if (!s.ok()) return Fail(s);
+  std::vector<PosedPrimitive> posed;
+  s = poser.PoseClip(clip, a.time, a.fps, &posed);
+  if (!s.ok()) return Fail(s);
+
+  const std::filesystem::path parent = std::filesystem::path(a.output).parent_path();
+  if (!parent.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(parent, ec);
+  }
+  const std::string what = clip < 0 ? std::string("rest pose")
+                                    : "clip " + std::to_string(clip) + " '" +
+                                          ch.asset.animations[static_cast<std::size_t>(clip)].name +
+                                          "' at " + FormatSeconds(a.time) + " s";
+  std::size_t skipped = 0;
+  if (obj) {
+    const std::string header = "dermis animate " + a.input + ": " + what + ", " + a.deformer +
+                               ", " + a.mode + " mode (world space)";
+    s = WritePosedObj(a.output, poser, posed, header, &skipped);
+  } else {
+    Asset out;
+    s = BuildPosedAsset(poser, posed, &out);
+    if (s.ok()) {
+      GltfExportOptions gltf;
+      gltf.generator = std::string("Dermis ") + DERMIS_VERSION;
+      s = ExportGltf(out, gltf, a.output);
+    }
+  }
+  if (!s.ok()) return Fail(s);
+  if (!a.quiet) {
+    std::size_t vertices = 0;
+    for (const PosedPrimitive& p : posed) vertices += p.positions.size();
+    // SetPose() calls: the clip played from its start (the sweep's history).
+    const std::string steps =
+        clip < 0 ? std::string()
+                 : " (" + std::to_string(ClipStepTimes(a.time, a.fps).size()) + " pose steps)";
+    if (skipped > 0) {
+      std::fprintf(stderr, "dermis animate: note: %zu point or line primitives are not in an OBJ\n",
+                   skipped);
+    }
+    std::fprintf(stderr,
+                 "dermis animate: %s, %s deformer%s, %s mode: %zu primitives, %zu vertices\nwrote "
+                 "%s\n",
+                 what.c_str(), a.deformer.c_str(), steps.c_str(), a.mode.c_str(), posed.size(),
+                 vertices, a.output.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddAnimateCommand(CLI::App* app, std::function<int()>* run) {
+  auto args = std::make_shared<AnimateArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "animate",
+      "Pose a fitted character (.dsurf) at one time of a clip: control vertices deformed, patches "
+      "refitted, the displaced surface evaluated; world space, as .obj, .glb or .gltf.");
+  cmd->add_option("INPUT", args->input, "Fitted character (.dsurf)")->required();
+  cmd->add_option("-o,--output", args->output, "Posed mesh: .obj (with normals), .glb or .gltf")
+      ->required();
+  cmd->add_option("--clip", args->clip,
+                  "Clip name or index (default: 0, or the rest pose when there are no clips; "
+                  "'rest': the rest pose)");
+  cmd->add_option("--time", args->time,
+                  "Seconds from the clip's start (past its end: its last keyframe)")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            double t = -1.0;
+            const auto r = std::from_chars(value.data(), value.data() + value.size(), t);
+            const bool ok = r.ec == std::errc() && r.ptr == value.data() + value.size() &&
+                            std::isfinite(t) && t >= 0.0;
+            return ok ? std::string() : "'" + value + "' is not a number of seconds >= 0";
+          },
+          "SECONDS", "seconds"))
+      ->capture_default_str();
+  cmd->add_option("--deformer", args->deformer,
+                  "Deformer of the control vertices: sweep (twists unwrapped along the clip), "
+                  "lbs or dqs")
+      ->check(CLI::IsMember(kDeformerNames))
+      ->capture_default_str();
+  cmd->add_option("--mode", args->mode,
+                  "bound: the original vertices on the posed surface; lod: the surface "
+                  "tessellated at --level")
+      ->check(CLI::IsMember({"bound", "lod"}))
+      ->capture_default_str();
+  cmd->add_option("--level", args->level, "lod: segments per control-face edge")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_option("--displacement-levels", args->displacement_levels,
+                  "Displacement levels to evaluate (-1: all, 0: the domain surface)")
+      ->check(CLI::Range(-1, 13))
+      ->capture_default_str();
+  cmd->add_option("--fps", args->fps,
+                  "Steps per second at which the clip is played from its start to --time (the "
+                  "sweep's twist unwrapping follows the motion; same steps as export --bake-sweep)")
+      ->check(CLI::Range(0.001, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--threads", args->threads, "Threads (0: all cores); results do not vary")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+  CLI::Option* time = cmd->get_option("--time");
+  cmd->callback([run, args, time]() {
+    args->time_given = time->count() > 0;
+    *run = [args]() { return RunAnimate(*args); };
+  });
+}
+
+}  // namespace dermis::cli

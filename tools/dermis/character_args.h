@@ -1,0 +1,27 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// What `dermis export` and `dermis animate` share: reading a .dsurf of either version as a
+// character, and the names of deformers and pose modes on the command line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dermis/core/status.h"
+#include "dermis/deform/deformer.h"
+#include "dermis/offline/character.h"
+#include "dermis/offline/character_pose.h"
+
+namespace dermis::cli {
+
+/// Reads `path` (a version-1 surface or a version-2 character) into `out`; `bytes` receives the
+/// file's bytes. Errors name the file.
+Status ReadCharacterFile(const std::string& path, std::string* bytes, Character* out);
+
+/// The deformer named "sweep", "lbs" or "dqs" (the names the CLI accepts).
+DeformerKind DeformerFromName(const std::string& name);
+inline const std::vector<std::string> kDeformerNames = {"sweep", "lbs", "dqs"};
+
+/// "bound" or "lod".
+CharacterPoseMode PoseModeFromName(const std::string& name);
+
+}  // namespace dermis::cli
