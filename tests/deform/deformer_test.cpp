@@ -376,5 +376,30 @@ TEST_CASE("sweep: the volume fix thickens a bent joint, no fold past the bisecto
   CHECK(wide_crossed == 0);
 }
 
+TEST_CASE("sweep: a zero-length bone cuts the chain instead of failing") {
+  // Joint 1 sits on joint 0 (a zero-length bone, as helper joints often do): joint 0 has no
+  // bone direction, so its vertices ride with it through the DQS fallback, and the chain
+  // 1 -> 2 -> 3 starts after it. Real rigs have such bones, so the sweep does not refuse them.
+  SkinRig rig;
+  rig.parents = {-1, 0, 1, 2};
+  rig.bind = {glm::dmat4(1.0), glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), {4, 0, 0}),
+              glm::translate(glm::dmat4(1.0), {8, 0, 0})};
+  std::vector<Vec3> rest = {{-1, 0.5, 0}, {1, 0.5, 0}, {6, 1, 0}, {5, -1, 0.5}};
+  std::vector<VertexWeights> w = {Two(0, 1, 0.0f), Two(1, 2, 0.0f), Two(2, 3, 0.0f),
+                                  Two(1, 2, 1.0f)};
+  std::unique_ptr<Deformer> sweep;
+  REQUIRE(
+      MakeSweepDeformer(rig, rest.data(), nullptr, w.data(), rest.size(), SweepOptions{}, &sweep)
+          .ok());
+  const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), 0.6, {0, 0, 1});
+  const std::vector<glm::dmat4> palette = {glm::dmat4(1.0), turn, turn, turn};
+  REQUIRE(sweep->SetPose(palette.data()).ok());
+  std::vector<Vec3> x(rest.size());
+  sweep->Deform(0, x.size(), x.data(), nullptr);
+  CHECK(glm::length(x[0] - rest[0]) < 1e-12);  // joint 0 did not move
+  for (std::size_t v = 1; v < x.size(); ++v) {
+    CHECK(glm::length(x[v] - Vec3(turn * glm::dvec4(rest[v], 1.0))) < 1e-9);
+  }
+}
 }  // namespace
 }  // namespace dermis
