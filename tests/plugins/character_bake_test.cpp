@@ -25,8 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
-/// Largest distance between three.js's positions of the baked file and the poser's, and the
-/// bounding-box diagonal of the poser's.
+/// Largest distance between three.js's positions of a baked (or posed) file and the poser's, and
+/// the bounding-box diagonal of the poser's.
 double BakeDifference(const CharacterPoser& poser, const std::vector<PosedPrimitive>& posed,
                       const std::map<std::pair<int, int>, std::vector<double>>& three,
                       double* diagonal) {
@@ -130,6 +130,33 @@ void CheckBake(const std::string& name) {
         CHECK(worst < 1e-5 * diagonal);
         worst_relative = std::max(worst_relative, worst / diagonal);
       }
+    }
+    // What `dermis animate -o POSED.glb` writes: the static asset of one pose (clip 0 halfway),
+    // validator-clean, drawn by three.js where the poser put it.
+    {
+      const double t = 0.5 * ch.asset.animations[0].Duration();
+      INFO("posed asset, clip 0 at t = " << t);
+      std::vector<PosedPrimitive> posed;
+      s = poser.PoseClip(0, t, fps, &posed);
+      INFO(s.message());
+      REQUIRE(s.ok());
+      Asset still;
+      s = BuildPosedAsset(poser, posed, &still);
+      INFO(s.message());
+      REQUIRE(s.ok());
+      const std::string posed_file = tmp.File(std::string("posed_") + DeformerName(kind) + ".glb");
+      s = ExportGltf(still, GltfExportOptions{}, posed_file);
+      INFO(s.message());
+      REQUIRE(s.ok());
+      const test::ValidatorReport posed_validation = test::Validate(posed_file, tmp);
+      INFO(test::Messages(posed_validation));
+      CHECK(posed_validation.errors == 0);
+      CHECK(posed_validation.warnings == 0);
+      const auto three = test::ThreePose(posed_file, -1, 0.0, tmp);
+      double diagonal = 0.0;
+      const double worst = BakeDifference(poser, posed, three, &diagonal);
+      CHECK(diagonal > 0.0);
+      CHECK(worst < 1e-5 * diagonal);
     }
     std::printf(
         "%-18s %-5s %zu clips, %4zu frames, %5zu vertices: %8.3f MB, validator %d errors %d "
