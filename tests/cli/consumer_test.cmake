@@ -1,0 +1,48 @@
+# Installs the build into a scratch prefix, then builds and runs tests/consumer against it with
+# find_package(dermis CONFIG), and a runtime-only program with pkg-config's flags alone.
+# Invoked by ctest with -DBUILD=<build dir> -DSOURCE=<repository root> -DWORK=<scratch dir>.
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "`${ARGN}` exited ${code}\n${out}\n${err}")
+  endif()
+  set(run_output "${out}" PARENT_SCOPE)
+endfunction()
+
+run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix)
+foreach(f include/dermis/surface/surface_evaluator.h include/dermis/plugins/gltf.h
+          lib/cmake/dermis/dermisConfig.cmake lib/cmake/dermis/dermisConfigVersion.cmake
+          lib/pkgconfig/dermis-runtime.pc bin/dermis)
+  file(GLOB found ${WORK}/prefix/${f} ${WORK}/prefix/lib/*/${f})
+  string(REPLACE "lib/" "lib*/" pattern ${f})
+  file(GLOB found2 ${WORK}/prefix/${pattern})
+  if(NOT found AND NOT found2)
+    message(FATAL_ERROR "the install has no ${f}")
+  endif()
+endforeach()
+
+run(${CMAKE_COMMAND} -S ${SOURCE}/tests/consumer -B ${WORK}/build -DCMAKE_BUILD_TYPE=Release
+    -DCMAKE_PREFIX_PATH=${WORK}/prefix)
+run(${CMAKE_COMMAND} --build ${WORK}/build)
+run(${WORK}/build/consumer)
+if(NOT run_output MATCHES "consumer ok")
+  message(FATAL_ERROR "the consumer did not report success: ${run_output}")
+endif()
+
+# pkg-config: the runtime alone.
+file(GLOB_RECURSE pc_files ${WORK}/prefix/*/dermis-runtime.pc)
+list(GET pc_files 0 pc)
+get_filename_component(pc_dir ${pc} DIRECTORY)
+set(ENV{PKG_CONFIG_PATH} ${pc_dir})
+run(pkg-config --cflags --libs dermis-runtime)
+string(STRIP "${run_output}" flags)
+separate_arguments(flags UNIX_COMMAND "${flags}")
+run(${CXX} -std=c++17 ${SOURCE}/tests/consumer/runtime_only.cpp ${flags} -o ${WORK}/runtime_only)
+run(${WORK}/runtime_only)
+if(NOT run_output MATCHES "runtime-only ok")
+  message(FATAL_ERROR "the runtime-only program did not report success: ${run_output}")
+endif()
+message(STATUS "installed package: find_package and pkg-config consumers built and ran")
