@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "dermis/offline/control_mesh.h"
 #include "dermis/offline/point_input.h"
 #include "dermis/offline/surface_fit.h"
 #include "dermis/offline/surface_projection.h"
@@ -186,6 +187,26 @@ TEST_CASE("fit: a bumpy sphere over a cube control mesh is recovered") {
     worst = std::max(worst, std::abs(r - glm::length(Bumpy(theta, phi, 0.05))));
   }
   CHECK(worst < 5e-3);
+}
+
+TEST_CASE("fit: a control-mesh target equal to the full split keeps every triangle") {
+  // A closed octahedron of 8 triangles: the full split has V + E + F = 6 + 12 + 8 = 26 quad
+  // vertices. Asking for exactly that (or more, which is refused) must not simplify at all.
+  PolygonMesh mesh;
+  mesh.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const int faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                           {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (const auto& f : faces) mesh.AddFace({f[0], f[1], f[2]});
+  ControlMeshOptions options;
+  options.target_vertices = 26;
+  PolygonMesh control;
+  const Status s = BuildControlMesh(mesh, options, &control);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  CHECK(control.num_vertices() == 26);
+  CHECK(control.num_faces() == 24);
+  options.target_vertices = 27;
+  CHECK_FALSE(BuildControlMesh(mesh, options, &control).ok());
 }
 
 TEST_CASE("fit: .dsurf round trip is bit-exact and threads do not change the bytes") {

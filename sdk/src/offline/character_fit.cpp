@@ -248,6 +248,8 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
           fo.control_vertices =
               std::max(options.min_control_vertices,
                        static_cast<int>(std::lround(options.vertex_ratio * dense.num_vertices())));
+          // A small component gets the full split of its own triangles, no more.
+          fo.control_vertices = std::min(fo.control_vertices, split_vertices);
         }
         if (options.progress) {
           fo.progress = [&](const std::string& s) { options.progress(stage + ": " + s); };

@@ -216,11 +216,19 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& optio
   int best_count = -1, best_flips = 0;
   double target_tris = options.target_vertices / 3.0;
   for (int attempt = 0; attempt < 6; ++attempt) {
-    const std::size_t target_index = std::max<std::size_t>(
-        6, 3 * static_cast<std::size_t>(std::llround(std::max(target_tris, 2.0))));
-    const std::size_t n =
-        meshopt_simplify(simplified.data(), welded.data(), welded.size(), wxyz.data(), unique,
-                         3 * sizeof(float), target_index, 1.0f, 0, nullptr);
+    // meshopt_simplify requires a target no larger than the input; at or above it, the
+    // candidate is the whole mesh.
+    const std::size_t target_index =
+        std::min(welded.size(),
+                 std::max<std::size_t>(
+                     6, 3 * static_cast<std::size_t>(std::llround(std::max(target_tris, 2.0)))));
+    std::size_t n = welded.size();
+    if (target_index < welded.size()) {
+      n = meshopt_simplify(simplified.data(), welded.data(), welded.size(), wxyz.data(), unique,
+                           3 * sizeof(float), target_index, 1.0f, 0, nullptr);
+    } else {
+      std::copy(welded.begin(), welded.end(), simplified.begin());
+    }
     std::vector<std::uint32_t> candidate(simplified.begin(),
                                          simplified.begin() + static_cast<std::ptrdiff_t>(n));
     const int count = SplitVertexCount(candidate);
