@@ -117,6 +117,8 @@ std::vector<double> ClipStepTimes(double time, double steps_per_second) {
     times.push_back(std::isfinite(time) && time > 0.0 ? time : 0.0);
     return times;
   }
+  // At most 10 million steps (a longer history changes nothing the unwrapping needs).
+  steps_per_second = std::min(steps_per_second, 1e7 / time);
   // A step closer to `time` than a thousandth of a step is merged into it, and so is one that
   // float32 (glTF keyframe times) could not tell apart from it.
   const double steps = std::ceil(time * steps_per_second - 1e-3);
@@ -409,7 +411,11 @@ Status CharacterPoser::PoseClip(int clip, double time, double steps_per_second,
   if (!std::isfinite(steps_per_second) || !(steps_per_second > 0.0)) {
     return Status::InvalidInput(st.asset.source + ": steps per second must be positive");
   }
-  for (const double t : ClipStepTimes(time, steps_per_second)) {
+  // Past the clip's end every pose is its last: the history needs the clip's steps only.
+  const double duration = st.asset.animations[static_cast<std::size_t>(clip)].Duration();
+  std::vector<double> steps = ClipStepTimes(std::min(time, duration), steps_per_second);
+  if (time > duration) steps.push_back(time);
+  for (const double t : steps) {
     SamplePose(st.asset, clip, t, &pose);
     const Status s = SetPose(pose);
     if (!s.ok()) return s.WithContext("clip " + std::to_string(clip) + " at " + std::to_string(t));
@@ -469,7 +475,11 @@ Status BuildPosedAsset(const CharacterPoser& poser, const std::vector<PosedPrimi
     }
     p.normals.resize(pp.normals.size());
     for (std::size_t v = 0; v < pp.normals.size(); ++v) {
-      p.normals[v] = glm::normalize(glm::vec3(pp.normals[v]));
+      // A zero normal (a zero NORMAL in the source, or a collapsed skinning matrix) cannot be
+      // normalised; glTF needs unit normals.
+      const glm::vec3 n(pp.normals[v]);
+      const float len = glm::length(n);
+      p.normals[v] = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
     }
     a.meshes.back().primitives.push_back(std::move(p));
   }

@@ -110,7 +110,8 @@ class CharacterPoser {
   /// Evaluates the last pose given to SetPose(): `out` gets one entry per drawn() primitive.
   Status Evaluate(std::vector<PosedPrimitive>* out);
 
-  /// ResetHistory(), then clip `clip` played through ClipStepTimes(time, steps_per_second)
+  /// ResetHistory(), then clip `clip` played through ClipStepTimes(min(time, duration),
+  /// steps_per_second) and, past the clip's end, `time`
   /// (SetPose() at each step), then Evaluate(). `clip` < 0: the rest pose (RestPose()). Times past
   /// the clip's end hold its last keyframe.
   Status PoseClip(int clip, double time, double steps_per_second, std::vector<PosedPrimitive>* out);
