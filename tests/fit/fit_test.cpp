@@ -207,6 +207,12 @@ TEST_CASE("fit: a control-mesh target equal to the full split keeps every triang
   CHECK(control.num_faces() == 24);
   options.target_vertices = 27;
   CHECK_FALSE(BuildControlMesh(mesh, options, &control).ok());
+  // Character fitting lowers a larger target to the full split instead (counted after dropping
+  // degenerate triangles, as the control mesh is).
+  options.clamp_to_full_split = true;
+  options.target_vertices = 1000;
+  REQUIRE(BuildControlMesh(mesh, options, &control).ok());
+  CHECK(control.num_vertices() == 26);
 }
 
 TEST_CASE("fit: .dsurf round trip is bit-exact and threads do not change the bytes") {

@@ -44,7 +44,7 @@ Index Find(std::vector<Index>* parent, Index x) {
 }
 
 /// Reason a component cannot be fitted, or empty.
-std::string CheckComponent(const PolygonMesh& mesh, int min_vertices, int* split_vertices) {
+std::string CheckComponent(const PolygonMesh& mesh, int min_vertices) {
   if (mesh.num_vertices() < min_vertices) {
     return "too small: " + std::to_string(mesh.num_vertices()) + " vertices (at least " +
            std::to_string(min_vertices) + " needed)";
@@ -67,7 +67,6 @@ std::string CheckComponent(const PolygonMesh& mesh, int min_vertices, int* split
              " triangles";
     }
   }
-  *split_vertices = mesh.num_vertices() + static_cast<int>(edges.size()) + mesh.num_faces();
   Vec3 lo(mesh.positions[0]), hi(lo);
   for (const Vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   const double d = glm::length(hi - lo);
@@ -232,8 +231,7 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
       unfitted.component = static_cast<Index>(c);
       unfitted.vertices = dense.num_vertices();
       unfitted.triangles = dense.num_faces();
-      int split_vertices = 0;
-      unfitted.reason = CheckComponent(dense, options.min_vertices, &split_vertices);
+      unfitted.reason = CheckComponent(dense, options.min_vertices);
       FittedSurface fitted;
       FitReport fr;
       if (unfitted.reason.empty()) {
@@ -248,9 +246,9 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
           fo.control_vertices =
               std::max(options.min_control_vertices,
                        static_cast<int>(std::lround(options.vertex_ratio * dense.num_vertices())));
-          // A small component gets the full split of its own triangles, no more.
-          fo.control_vertices = std::min(fo.control_vertices, split_vertices);
         }
+        // A small component gets the full split of its own (non-degenerate) triangles, no more.
+        fo.clamp_control_vertices = true;
         if (options.progress) {
           fo.progress = [&](const std::string& s) { options.progress(stage + ": " + s); };
         }

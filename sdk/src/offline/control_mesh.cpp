@@ -131,7 +131,7 @@ int FlipToEvenValences(const std::vector<Vec3>& x, std::vector<std::uint32_t>* t
 
 }  // namespace
 
-Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& options,
+Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& requested,
                         PolygonMesh* control, ControlMeshInfo* info) {
   const std::string where = mesh.source_name.empty() ? "mesh" : mesh.source_name;
   ControlMeshInfo local;
@@ -139,9 +139,9 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& optio
   inf = ControlMeshInfo();
   if (mesh.num_faces() <= 0)
     return Status::InvalidInput(where + ": no faces to build a control mesh from");
-  if (options.target_vertices < 8) {
+  if (requested.target_vertices < 8) {
     return Status::InvalidInput("control mesh: target vertex count " +
-                                std::to_string(options.target_vertices) + " is below 8");
+                                std::to_string(requested.target_vertices) + " is below 8");
   }
   // Fan triangles and float positions for meshoptimizer.
   std::vector<std::uint32_t> tris;
@@ -191,6 +191,9 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& optio
     return Status::InvalidInput(where + ": too few usable triangles for a control mesh");
   }
   const int full = SplitVertexCount(welded);
+  ControlMeshOptions options = requested;
+  if (options.clamp_to_full_split)
+    options.target_vertices = std::min(options.target_vertices, full);
   if (options.target_vertices > full) {
     return Status::InvalidInput(
         where + ": target of " + std::to_string(options.target_vertices) +

@@ -109,6 +109,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     }
     ControlMeshOptions cm;
     cm.target_vertices = options.control_vertices;
+    cm.clamp_to_full_split = options.clamp_control_vertices;
     Status s = BuildControlMesh(*input.mesh, cm, &fitted.control_mesh);
     if (!s.ok()) return s;
   }

@@ -13,6 +13,9 @@ namespace dermis {
 struct ControlMeshOptions {
   /// Wanted number of control (quad) vertices. The result is the closest count found.
   int target_vertices = 540;
+  /// True: a target above the full split (every usable triangle split into three quads) is
+  /// lowered to it; false: such a target is an error.
+  bool clamp_to_full_split = false;
 };
 
 /// What BuildControlMesh() did.

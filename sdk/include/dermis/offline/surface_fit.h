@@ -25,6 +25,9 @@ namespace dermis {
 struct FitOptions {
   /// Wanted control vertices when the control mesh is built from the data.
   int control_vertices = 540;
+  /// True: a control_vertices target above what splitting the whole mesh gives is lowered to
+  /// that count; false: it is an error (the CLI's --control-vertices).
+  bool clamp_control_vertices = false;
   DomainOptions domain;
   /// Levels of the displacement functions (max_levels is --levels; threads is ignored).
   DisplacementFitOptions displacement;
