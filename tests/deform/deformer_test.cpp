@@ -401,5 +401,49 @@ TEST_CASE("sweep: a zero-length bone cuts the chain instead of failing") {
     CHECK(glm::length(x[v] - Vec3(turn * glm::dvec4(rest[v], 1.0))) < 1e-9);
   }
 }
+TEST_CASE("sweep: folding a joint to 180 degrees stays finite and continuous") {
+  const Tube t = MakeTube();
+  std::unique_ptr<Deformer> d;
+  REQUIRE(
+      MakeSweepDeformer(Chain3(), t.x.data(), nullptr, t.w.data(), t.x.size(), SweepOptions{}, &d)
+          .ok());
+  // Approaching 180 degrees the bend plane stays the one the motion came from.
+  std::vector<Vec3> before(t.x.size()), at(t.x.size());
+  const double eps = 1e-6;
+  const double angles[2] = {kPi - eps, kPi};
+  std::vector<Vec3>* outs[2] = {&before, &at};
+  for (int k = 0; k < 2; ++k) {
+    const auto palette = BendPalette(angles[k]);
+    REQUIRE(d->SetPose(palette.data()).ok());
+    d->Deform(0, outs[k]->size(), outs[k]->data(), nullptr);
+  }
+  double worst = 0.0;
+  for (std::size_t v = 0; v < at.size(); ++v) {
+    REQUIRE(std::isfinite(at[v].x + at[v].y + at[v].z));
+    worst = std::max(worst, glm::length(at[v] - before[v]));
+  }
+  CHECK(worst < 1e-3);
+}
+
+TEST_CASE("deform: a joint scaled to zero is accepted and collapses its vertices") {
+  // Hiding a prop by scaling its joint to 0 is common in glTF clips.
+  std::vector<Vec3> rest = {{6, 1, 0}, {1, 1, 0}};
+  std::vector<VertexWeights> w = {Two(1, 2, 0.0f), Two(0, 1, 0.0f)};
+  const glm::dmat4 hide = glm::translate(glm::dmat4(1.0), {4, 0, 0}) *
+                          glm::scale(glm::dmat4(1.0), {0, 0, 0}) *
+                          glm::translate(glm::dmat4(1.0), {-4, 0, 0});
+  const std::vector<glm::dmat4> palette = {glm::dmat4(1.0), hide, hide};
+  for (DeformerKind kind : {DeformerKind::kLbs, DeformerKind::kDqs, DeformerKind::kSweep}) {
+    INFO(DeformerName(kind));
+    std::unique_ptr<Deformer> d;
+    REQUIRE(MakeDeformer(kind, Chain3(), rest.data(), nullptr, w.data(), rest.size(), &d).ok());
+    REQUIRE(d->SetPose(palette.data()).ok());
+    std::vector<Vec3> x(rest.size());
+    d->Deform(0, x.size(), x.data(), nullptr);
+    CHECK(glm::length(x[0] - Vec3(4, 0, 0)) < 1e-9);  // collapsed onto the joint
+    CHECK(glm::length(x[1] - rest[1]) < 1e-9);        // joint 0 did not move
+  }
+}
+
 }  // namespace
 }  // namespace dermis

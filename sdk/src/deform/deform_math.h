@@ -45,8 +45,23 @@ inline glm::dvec3 Translation(const DualQuat& d) {
   return {t.x, t.y, t.z};
 }
 
-/// Splits a 3x3 matrix into a rotation (polar decomposition by Newton iteration, sign fixed to
-/// a proper rotation) and the rest: m = rotation * stretch.
+/// Cofactor matrix det(m) * inverse(m)^T, columns (b x c, c x a, a x b) of m = (a b c): it maps
+/// normals like the inverse transpose, up to the sign of det, and stays defined (and of rank 2)
+/// when m has rank 2.
+inline glm::dmat3 Cofactor(const glm::dmat3& m) {
+  return glm::dmat3(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
+}
+
+/// True if m is too close to singular to take its rotation (relative to its size).
+inline bool NearlySingular(const glm::dmat3& m) {
+  double size = 0.0;
+  for (int c = 0; c < 3; ++c) size = std::fmax(size, glm::length(m[c]));
+  return !(size > 0.0) || !(std::fabs(glm::determinant(m)) > 1e-9 * size * size * size);
+}
+
+/// The rotation of a non-singular 3x3 matrix by polar decomposition (Newton iteration on
+/// (R + R^-T) / 2): m = rotation * stretch. A mirroring m (det < 0) gives the proper rotation
+/// -R, leaving the reflection in the stretch.
 inline glm::dmat3 PolarRotation(const glm::dmat3& m) {
   glm::dmat3 r = m;
   for (int i = 0; i < 30; ++i) {
@@ -57,6 +72,7 @@ inline glm::dmat3 PolarRotation(const glm::dmat3& m) {
     r = next;
     if (diff < 1e-14) break;
   }
+  if (glm::determinant(r) < 0.0) r = -r;
   return r;
 }
 
@@ -74,10 +90,12 @@ inline double TwistAngle(const glm::dquat& q, const glm::dvec3& a) {
 }
 
 /// Splits a skin matrix for DQS: its rigid part as a unit dual quaternion and its stretch
-/// (M = [R t] * [S 0]). Returns true if the stretch differs from identity.
+/// (M = [R t] * [S 0]). A (nearly) singular linear part, e.g. a joint scaled to 0 to hide what
+/// it carries, has no rotation: R = identity and S = the linear part, which still gives M x
+/// for a vertex on that joint alone. Returns true if the stretch differs from identity.
 inline bool SplitSkinMatrix(const glm::dmat4& m, DualQuat* dq, glm::dmat3* stretch) {
   const glm::dmat3 linear(m);
-  const glm::dmat3 r = PolarRotation(linear);
+  const glm::dmat3 r = NearlySingular(linear) ? glm::dmat3(1.0) : PolarRotation(linear);
   *stretch = glm::transpose(r) * linear;
   *dq = MakeDualQuat(glm::normalize(glm::quat_cast(r)), glm::dvec3(m[3]));
   for (int c = 0; c < 3; ++c)
@@ -116,7 +134,7 @@ inline void DqsPoint(const DualQuat* dq, const glm::dmat3* stretch, bool has_str
   *x_out = b.real * x + Translation(b);
   if (normal_out != nullptr) {
     glm::dvec3 n = n_in;
-    if (has_stretch) n = glm::transpose(glm::inverse(s)) * n;
+    if (has_stretch) n = Cofactor(s) * n * (glm::determinant(s) < 0.0 ? -1.0 : 1.0);
     n = b.real * n;
     const double l = glm::length(n);
     *normal_out = l > 0.0 ? n / l : n_in;

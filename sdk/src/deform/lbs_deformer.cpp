@@ -45,13 +45,11 @@ class LbsDeformer final : public Deformer {
       }
       positions[v] = Vec3(m * glm::dvec4(rest_[v], 1.0));
       if (normals != nullptr && !normals_.empty()) {
+        // Inverse transpose = cofactor / det: the cofactor alone has the right direction (up to
+        // the sign of det) and stays defined when the blend loses a rank.
         const glm::dmat3 linear(m);
-        const double det = glm::determinant(linear);
-        // Inverse transpose = cofactor / det; the cofactor matrix alone has the right direction
-        // (up to the sign of det), and stays defined when the blend collapses.
-        const glm::dmat3 cof = glm::transpose(glm::inverse(linear)) * det;
-        Vec3 n = cof * normals_[v];
-        if (det < 0.0) n = -n;
+        Vec3 n = deform::Cofactor(linear) * normals_[v];
+        if (glm::determinant(linear) < 0.0) n = -n;
         const double len = glm::length(n);
         normals[v] = len > 0.0 ? n / len : normals_[v];
       }

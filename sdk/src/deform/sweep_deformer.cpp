@@ -76,7 +76,9 @@ struct Chain {
   // Per-frame state (preallocated).
   ChainGeom pose;
   glm::dquat q0{1.0, 0.0, 0.0, 0.0};  // rotation of J0 relative to bind
-  std::vector<double> tau;            // twist per joint
+  double scale = 1.0;                 // uniform scale of the whole chain in this pose
+  bool usable = true;       // false: a joint stretches non-uniformly; its vertices use DQS
+  std::vector<double> tau;  // twist per joint
   std::vector<double> prev_tau;
   std::vector<double> k;  // bump height per joint
   double length() const { return s.back(); }
@@ -117,8 +119,8 @@ double BumpSquaredIntegral(double a, double w) {
 /// h grows as r tan(theta / 2) (with a 10 % margin) from its base value up to its cap.
 double BlendHalfLength(const Chain& c, std::size_t j, double theta, bool grow) {
   double h = c.h_base[j];
-  if (grow && theta > kMinBend && theta < kPi) {
-    h = std::max(h, 1.1 * c.radius[j] * std::tan(0.5 * theta));
+  if (grow && theta > kMinBend) {
+    h = theta < kPi - 1e-9 ? std::max(h, 1.1 * c.radius[j] * std::tan(0.5 * theta)) : c.h_max[j];
   }
   return std::min(h, c.h_max[j]);
 }
@@ -135,29 +137,45 @@ void BuildGeom(const Chain& c, bool grow, ChainGeom* g) {
   g->u[0] = glm::dquat(1.0, 0.0, 0.0, 0.0);
   for (std::size_t j = 1; j < n; ++j) {
     const Vec3 t1 = g->t[j - 1], t2 = g->t[j];
-    const double ratio_in = glm::length(g->p[j] - g->p[j - 1]) / c.len[j - 1];
-    const double ratio_out = glm::length(g->p[j + 1] - g->p[j]) / c.len[j];
-    const Vec3 cr = glm::cross(t1, t2);
-    const double sin_t = glm::length(cr);
+    const double len_in = glm::length(g->p[j] - g->p[j - 1]);
+    const double len_out = glm::length(g->p[j + 1] - g->p[j]);
+    Vec3 cr = glm::cross(t1, t2);
+    double sin_t = glm::length(cr);
     const double theta = std::atan2(sin_t, glm::dot(t1, t2));
+    if (sin_t <= 1e-12 && glm::dot(t1, t2) < 0.0) {
+      // Folded back by (nearly) 180 degrees: the plane of the bend is undefined. Keep the
+      // previous pose's axis (g holds it), else the rest one, else any normal of t1.
+      Vec3 axis = g->axis[j];
+      if (!(glm::dot(axis, axis) > 0.5)) axis = c.rest.axis[j];
+      if (!(glm::dot(axis, axis) > 0.5)) {
+        axis = glm::cross(t1, std::fabs(t1.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0));
+      }
+      axis -= glm::dot(axis, t1) * t1;
+      cr = glm::normalize(axis) * std::sin(theta);
+      sin_t = std::max(std::sin(theta), 1e-300);
+    }
     g->h[j] = BlendHalfLength(c, j, theta, grow);
-    const double hp = g->h[j] * 0.5 * (ratio_in + ratio_out);
+    // The zone scales with the bones' stretch, and never reaches past half a posed bone.
+    const double hp = std::min(g->h[j] * 0.5 * (len_in / c.len[j - 1] + len_out / c.len[j]),
+                               0.49 * std::min(len_in, len_out));
     g->a[j] = g->p[j] - hp * t1;
     g->b[j] = g->p[j] + hp * t2;
-    const Vec3 bis = t1 + t2;
-    const double bl = glm::length(bis);
-    g->bisector[j] = bl > 1e-12 ? bis / bl : t1;
-    if (theta > kMinBend && sin_t > 1e-12 && hp > 0.0) {
+    if (theta > kMinBend && sin_t > 0.0 && hp > 0.0) {
       g->theta[j] = theta;
-      g->axis[j] = cr / sin_t;
+      g->axis[j] = glm::normalize(cr);
       const double radius = hp / std::tan(0.5 * theta);
-      const Vec3 inward = glm::normalize(t2 - glm::dot(t2, t1) * t1);
+      const Vec3 inward = glm::cross(g->axis[j], t1);  // the arc turns toward axis x t1
       g->centre[j] = g->a[j] + radius * inward;
       g->u[j] = glm::angleAxis(theta, g->axis[j]) * g->u[j - 1];
+      // The bisector of t1 and t2; folded back completely it is the inward normal.
+      const Vec3 bis = t1 + t2;
+      const double bl = glm::length(bis);
+      g->bisector[j] = bl > 1e-9 ? bis / bl : inward;
     } else {
       g->theta[j] = 0.0;
       g->axis[j] = Vec3(0.0);
       g->centre[j] = g->p[j];
+      g->bisector[j] = t1;
       // A straight joint: transport across it by the minimal rotation (usually identity).
       g->u[j] = (sin_t > 1e-15 ? glm::angleAxis(theta, cr / sin_t) : glm::dquat(1.0, 0, 0, 0)) *
                 g->u[j - 1];
@@ -231,11 +249,11 @@ class SweepDeformer final : public Deformer {
   bool has_normals_ = false;
   bool history_ = false;
   std::vector<Chain> chains_;
-  std::vector<int> chain_of_;        // per joint: chain, or -1 (rest bucket)
-  std::vector<int> bone_of_;         // per joint: bone index within its chain (n = end joint)
-  std::vector<Vec3> bind_position_;  // per joint
-  std::vector<glm::dquat> bind_rotation_;
+  std::vector<int> chain_of_;              // per joint: chain, or -1 (rest bucket)
+  std::vector<int> bone_of_;               // per joint: bone index within its chain (n = end joint)
+  std::vector<Vec3> bind_position_;        // per joint
   std::vector<glm::dquat> pose_rotation_;  // per joint, relative to bind (per frame)
+  std::vector<double> joint_scale_;        // per joint: uniform scale, or NaN (per frame)
   std::vector<std::uint32_t> first_;       // per vertex: first binding, count_ + 1 entries
   std::vector<Binding> bindings_;
   std::vector<double> rest_share_;  // per vertex: share deformed by DQS
@@ -339,12 +357,10 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
   dq_.resize(joints_);
   stretch_.assign(joints_, glm::dmat3(1.0));
   bind_position_.resize(joints_);
-  bind_rotation_.resize(joints_);
   pose_rotation_.assign(joints_, glm::dquat(1.0, 0.0, 0.0, 0.0));
+  joint_scale_.assign(joints_, 1.0);
   for (std::size_t j = 0; j < joints_; ++j) {
     bind_position_[j] = Vec3(rig.bind[j][3]);
-    bind_rotation_[j] =
-        glm::normalize(glm::quat_cast(deform::PolarRotation(glm::dmat3(rig.bind[j]))));
   }
   MakeChains(rig);
 
@@ -506,9 +522,9 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
 
 Status SweepDeformer::SetPose(const glm::dmat4* m) {
   for (std::size_t j = 0; j < joints_; ++j) {
-    if (!deform::IsFinite(m[j]) || !(std::fabs(glm::determinant(glm::dmat3(m[j]))) > 1e-12)) {
+    if (!deform::IsFinite(m[j])) {
       return Status::InvalidInput("sweep: skin matrix of joint " + std::to_string(j) +
-                                  " is not finite or not invertible");
+                                  " is not finite");
     }
   }
   bool stretch = false;
@@ -517,13 +533,28 @@ Status SweepDeformer::SetPose(const glm::dmat4* m) {
   }
   has_stretch_ = stretch;
   for (std::size_t j = 0; j < joints_; ++j) {
-    pose_rotation_[j] = glm::normalize(glm::quat_cast(deform::PolarRotation(glm::dmat3(m[j]))));
+    pose_rotation_[j] = dq_[j].real;
+    // The sweep moves rigid frames, scaled uniformly at most (an armature's unit scale).
+    const glm::dmat3& st = stretch_[j];
+    const double lambda = (st[0][0] + st[1][1] + st[2][2]) / 3.0;
+    double off = 0.0;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        off = std::max(off, std::fabs(st[a][b] - (a == b ? lambda : 0.0)));
+    joint_scale_[j] =
+        lambda > 0.0 && off <= 1e-6 * lambda ? lambda : std::numeric_limits<double>::quiet_NaN();
   }
   for (Chain& c : chains_) {
     const std::size_t nj = c.joints.size(), n = c.bones();
     for (std::size_t i = 0; i < nj; ++i) {
       const std::size_t j = static_cast<std::size_t>(c.joints[i]);
       c.pose.p[i] = Vec3(m[j] * glm::dvec4(bind_position_[j], 1.0));
+    }
+    c.scale = joint_scale_[static_cast<std::size_t>(c.joints[0])];
+    c.usable = std::isfinite(c.scale);
+    for (const Index j : c.joints) {
+      const double js = joint_scale_[static_cast<std::size_t>(j)];
+      if (!(std::fabs(js - c.scale) <= 1e-6 * c.scale)) c.usable = false;
     }
     BuildGeom(c, options_.grow_blend_with_bend, &c.pose);
     c.q0 = pose_rotation_[static_cast<std::size_t>(c.joints[0])];
@@ -557,6 +588,9 @@ Status SweepDeformer::SetPose(const glm::dmat4* m) {
       const double qc = cp * 2.0 * hp + 2.0 * (w - hp) - target;
       const double disc = qb * qb - qa * qc;
       if (qa > 0.0 && disc >= 0.0) c.k[j] = (-qb + std::sqrt(disc)) / qa;
+      // Bounded: near a full fold the arc compresses the zone to nothing and k would balloon a
+      // slender limb; a bind bent more than the pose would shrink sections through zero.
+      c.k[j] = std::clamp(c.k[j], -0.5, 1.0);
     }
   }
   history_ = true;
@@ -579,7 +613,7 @@ Vec3 SweepDeformer::EvalBinding(const Binding& b, Vec3* normal) const {
   for (std::size_t j = 1; j + 1 < c.joints.size(); ++j)
     sigma += c.k[j] * Bump(b.s - c.s[j], c.w[j]);
   const glm::dquat g = glm::angleAxis(twist, tangent) * transport * c.q0;
-  Vec3 x = pos + g * (b.axial + sigma * b.radial);
+  Vec3 x = pos + c.scale * (g * (b.axial + sigma * b.radial));
   if (options_.clamp_folds) {
     // The bisector planes of the joints at both ends of the vertex's bone.
     for (std::size_t j : {static_cast<std::size_t>(b.bone), static_cast<std::size_t>(b.bone) + 1}) {
@@ -598,6 +632,18 @@ void SweepDeformer::Deform(std::size_t begin, std::size_t end, Vec3* positions,
   end = std::min(end, count_);
   const bool want_normals = normals != nullptr && has_normals_;
   for (std::size_t v = begin; v < end; ++v) {
+    // A chain stretched non-uniformly (a joint scaled to hide a part, say) has no sweep: the
+    // vertex is deformed by DQS, whose two-phase blend follows any scale.
+    bool sweep = true;
+    for (std::uint32_t q = first_[v]; q < first_[v + 1]; ++q) {
+      if (!chains_[bindings_[q].chain].usable) sweep = false;
+    }
+    if (!sweep) {
+      deform::DqsPoint(dq_.data(), stretch_.data(), has_stretch_, weights_[v], rest_[v],
+                       want_normals ? normals_[v] : Vec3(0.0), &positions[v],
+                       want_normals ? &normals[v] : nullptr);
+      continue;
+    }
     Vec3 x(0.0), nsum(0.0);
     for (std::uint32_t q = first_[v]; q < first_[v + 1]; ++q) {
       Vec3 nn(0.0);

@@ -68,7 +68,9 @@ class Deformer {
 
   /// Takes the joint palette of a frame: `skin_matrices[j]` = world(joint j) * inverseBind(j),
   /// mapping mesh (bind) space to world space (the matrices glTF skinning uses), one per joint.
-  /// Fails, keeping the previous pose, if a matrix is not finite or not invertible.
+  /// Fails, keeping the previous pose, if a matrix is not finite (the only case that builds an
+  /// error message, so the only one that allocates). A singular matrix (a joint scaled to 0)
+  /// is accepted: DQS and the sweep then take no rotation from it, only its linear part.
   virtual Status SetPose(const glm::dmat4* skin_matrices) = 0;
 
   /// Deformed positions of vertices [begin, end) into `positions[begin..end)`; if `normals` is
@@ -97,7 +99,8 @@ Status MakeDqsDeformer(const SkinRig& rig, const Vec3* rest_positions, const Vec
 
 /// Settings of the sweep deformer (docs/deformation.md).
 struct SweepOptions {
-  /// Cross-section stations per bone (rest arc length sampled uniformly per bone).
+  /// Samples per bone of the coarse scan that binds each vertex to its closest trajectory
+  /// point (refined by golden-section search afterwards).
   int stations_per_bone = 16;
   /// Blend half-length at a joint: blend_radius_factor * r, with r the skin radius there (the
   /// 90th percentile of the distance from the bone polyline of the vertices weighted to the
