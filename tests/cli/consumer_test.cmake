@@ -13,14 +13,15 @@ function(run)
 endfunction()
 
 run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix)
+# Every expected file, with the library folder allowed to be multiarch (lib/x86_64-linux-gnu).
 foreach(f include/dermis/surface/surface_evaluator.h include/dermis/plugins/gltf.h
-          lib/cmake/dermis/dermisConfig.cmake lib/cmake/dermis/dermisConfigVersion.cmake
-          lib/pkgconfig/dermis-runtime.pc bin/dermis)
-  file(GLOB found ${WORK}/prefix/${f} ${WORK}/prefix/lib/*/${f})
-  string(REPLACE "lib/" "lib*/" pattern ${f})
-  file(GLOB found2 ${WORK}/prefix/${pattern})
-  if(NOT found AND NOT found2)
-    message(FATAL_ERROR "the install has no ${f}")
+          LIB/cmake/dermis/dermisConfig.cmake LIB/cmake/dermis/dermisConfigVersion.cmake
+          LIB/pkgconfig/dermis-runtime.pc bin/dermis)
+  string(REPLACE "LIB/" "lib/" plain ${f})
+  string(REPLACE "LIB/" "lib/*/" multiarch ${f})
+  file(GLOB found ${WORK}/prefix/${plain} ${WORK}/prefix/${multiarch})
+  if(NOT found)
+    message(FATAL_ERROR "the install has no ${plain}")
   endif()
 endforeach()
 
