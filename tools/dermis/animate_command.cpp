@@ -228,18 +228,8 @@ void AddAnimateCommand(CLI::App* app, std::function<int()>* run) {
                   "lbs or dqs")
       ->check(CLI::IsMember(kDeformerNames))
       ->capture_default_str();
-  cmd->add_option("--mode", args->mode,
-                  "bound: the original vertices on the posed surface; lod: the surface "
-                  "tessellated at --level")
-      ->check(CLI::IsMember({"bound", "lod"}))
-      ->capture_default_str();
-  cmd->add_option("--level", args->level, "lod: segments per control-face edge")
-      ->check(CLI::Range(1, 64))
-      ->capture_default_str();
-  cmd->add_option("--displacement-levels", args->displacement_levels,
-                  "Displacement levels to evaluate (-1: all, 0: the domain surface)")
-      ->check(CLI::Range(-1, 13))
-      ->capture_default_str();
+  AddEvaluationOptions(cmd, "the original vertices on the posed surface", &args->mode, &args->level,
+                       &args->displacement_levels);
   cmd->add_option("--fps", args->fps,
                   "Steps per second at which the clip is played from its start to --time (the "
                   "sweep's twist unwrapping follows the motion; same steps as export --bake-sweep)")

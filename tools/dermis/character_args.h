@@ -3,6 +3,7 @@
 // character, and the names of deformers and pose modes on the command line.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
@@ -23,5 +24,10 @@ inline const std::vector<std::string> kDeformerNames = {"sweep", "lbs", "dqs"};
 
 /// "bound" or "lod".
 CharacterPoseMode PoseModeFromName(const std::string& name);
+
+/// Registers the options that choose what is evaluated on a surface, shared by `export` and
+/// `animate`: --mode bound|lod (described by `bound_help`), --level n, --displacement-levels L.
+void AddEvaluationOptions(CLI::App* cmd, const std::string& bound_help, std::string* mode,
+                          int* level, int* displacement_levels);
 
 }  // namespace dermis::cli

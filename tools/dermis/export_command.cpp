@@ -151,18 +151,8 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
       "export", "Export a fitted character (.dsurf) as a skinned glTF (.glb or .gltf).");
   cmd->add_option("INPUT", args->input, "Fitted character or surface (.dsurf)")->required();
   cmd->add_option("-o,--output", args->output, "Output .glb or .gltf")->required();
-  cmd->add_option("--mode", args->mode,
-                  "bound: original topology, UVs and materials on the displaced surface; lod: "
-                  "the surface tessellated at --level")
-      ->check(CLI::IsMember({"bound", "lod"}))
-      ->capture_default_str();
-  cmd->add_option("--level", args->level, "lod: segments per control-face edge")
-      ->check(CLI::Range(1, 64))
-      ->capture_default_str();
-  cmd->add_option("--displacement-levels", args->displacement_levels,
-                  "Displacement levels to evaluate (-1: all, 0: the domain surface)")
-      ->check(CLI::Range(-1, 13))
-      ->capture_default_str();
+  AddEvaluationOptions(cmd, "original topology, UVs and materials on the displaced surface",
+                       &args->mode, &args->level, &args->displacement_levels);
   cmd->add_option("--max-influences", args->max_influences,
                   "Joint influences per vertex written (4 or 8; more are dropped, smallest first)")
       ->check(CLI::IsMember({4, 8}))
