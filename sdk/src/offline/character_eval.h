@@ -30,6 +30,10 @@ struct PartEval {
 /// part's source triangles).
 Status MakePartEval(const Character& ch, Index part, int levels, PartEval* e);
 
+/// Area-weighted vertex normals of a primitive's triangles at `positions` (unit; (0, 0, 1)
+/// where no triangle has area).
+std::vector<Vec3> TriangleNormals(const AssetPrimitive& prim, const std::vector<Vec3>& positions);
+
 /// Per mesh, per primitive, per vertex: where the vertex lies on a part's surface (part, face,
 /// u, v), or part = kInvalidIndex. A primitive's vector is empty when none of its vertices does.
 using SurfaceSources = std::vector<std::vector<std::vector<VertexBinding>>>;

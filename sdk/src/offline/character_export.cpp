@@ -62,6 +62,23 @@ glm::vec4 Reorthogonalise(const glm::vec4& tangent, const glm::vec3& n) {
 
 namespace character {
 
+/// Area-weighted vertex normals of a primitive's triangles at `positions` (unit; (0, 0, 1)
+/// where no triangle has area).
+std::vector<Vec3> TriangleNormals(const AssetPrimitive& prim, const std::vector<Vec3>& positions) {
+  std::vector<Vec3> acc(positions.size(), Vec3(0.0));
+  const std::vector<std::uint32_t> tris = PrimitiveTriangles(prim);
+  for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
+    const Vec3 n = glm::cross(positions[tris[t + 1]] - positions[tris[t]],
+                              positions[tris[t + 2]] - positions[tris[t]]);
+    for (std::size_t k = 0; k < 3; ++k) acc[tris[t + k]] += n;
+  }
+  for (Vec3& n : acc) {
+    const double len = glm::length(n);
+    n = len > 0.0 ? n / len : Vec3(0.0, 0.0, 1.0);
+  }
+  return acc;
+}
+
 Status MakePartEval(const Character& ch, Index part_index, int levels, PartEval* e) {
   const CharacterPart& part = ch.parts[static_cast<std::size_t>(part_index)];
   const DisplacedSurface& s = part.surface;
@@ -139,17 +156,10 @@ Status BuildBoundAsset(const Character& ch, const CharacterExportOptions& option
       }
       if (!had_normals) {
         // Vertices of unfitted parts in the same primitive: normals from their triangles.
-        std::vector<glm::vec3> acc(prim.positions.size(), glm::vec3(0.0f));
-        const std::vector<std::uint32_t> tris = PrimitiveTriangles(prim);
-        for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
-          const glm::vec3 n = glm::cross(prim.positions[tris[t + 1]] - prim.positions[tris[t]],
-                                         prim.positions[tris[t + 2]] - prim.positions[tris[t]]);
-          for (int k = 0; k < 3; ++k) acc[tris[t + static_cast<std::size_t>(k)]] += n;
-        }
+        const std::vector<Vec3> normals = character::TriangleNormals(
+            prim, std::vector<Vec3>(prim.positions.begin(), prim.positions.end()));
         for (std::size_t v = 0; v < bind.size(); ++v) {
-          if (bind[v].part != kInvalidIndex) continue;
-          const float len = glm::length(acc[v]);
-          prim.normals[v] = len > 0.0f ? acc[v] / len : glm::vec3(0, 0, 1);
+          if (bind[v].part == kInvalidIndex) prim.normals[v] = glm::vec3(normals[v]);
         }
       }
     }

@@ -37,23 +37,6 @@ Vec3 TransformNormal(const glm::dmat4& m, const Vec3& n) {
   return len > 0.0 ? r / len : n;
 }
 
-/// Area-weighted vertex normals of a primitive's triangles at `positions` (unit; (0, 0, 1)
-/// where no triangle has area).
-std::vector<Vec3> TriangleNormals(const AssetPrimitive& prim, const std::vector<Vec3>& positions) {
-  std::vector<Vec3> acc(positions.size(), Vec3(0.0));
-  const std::vector<std::uint32_t> tris = PrimitiveTriangles(prim);
-  for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
-    const Vec3 n = glm::cross(positions[tris[t + 1]] - positions[tris[t]],
-                              positions[tris[t + 2]] - positions[tris[t]]);
-    for (std::size_t k = 0; k < 3; ++k) acc[tris[t + k]] += n;
-  }
-  for (Vec3& n : acc) {
-    const double len = glm::length(n);
-    n = len > 0.0 ? n / len : Vec3(0.0, 0.0, 1.0);
-  }
-  return acc;
-}
-
 bool IsTriangleMode(PrimitiveMode mode) {
   return mode == PrimitiveMode::kTriangles || mode == PrimitiveMode::kTriangleStrip ||
          mode == PrimitiveMode::kTriangleFan;
@@ -379,7 +362,8 @@ Status CharacterPoser::Evaluate(std::vector<PosedPrimitive>* out) {
           }
         }
       }
-      if (want_normals && o.normals.empty()) o.normals = TriangleNormals(prim, o.positions);
+      if (want_normals && o.normals.empty())
+        o.normals = character::TriangleNormals(prim, o.positions);
       if (!want_normals) o.normals.clear();
     }
   });
