@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Character fitting (weld, components, per-part fit, skin transfer, bindings), the character
 // .dsurf container and the bound / lod export builders.
-#include "dermis/offline/character.h"
+#include "dermis/runtime/character.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>

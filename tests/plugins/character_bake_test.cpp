@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "dermis/offline/character.h"
+#include "dermis/runtime/character.h"
 #include "dermis/offline/character_fit.h"
 #include "dermis/offline/character_pose.h"
 #include "dermis/plugins/gltf.h"

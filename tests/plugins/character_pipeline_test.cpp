@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "dermis/asset/asset_validate.h"
-#include "dermis/offline/character.h"
+#include "dermis/runtime/character.h"
 #include "dermis/offline/character_export.h"
 #include "dermis/offline/character_fit.h"
 #include "dermis/plugins/gltf.h"

@@ -9,7 +9,7 @@
 #include <functional>
 #include <string>
 
-#include "dermis/offline/character.h"
+#include "dermis/runtime/character.h"
 #include "dermis/offline/surface_fit.h"
 
 namespace dermis {

@@ -20,7 +20,7 @@
 #include "dermis/asset/asset_pose.h"
 #include "dermis/core/status.h"
 #include "dermis/deform/deformer.h"
-#include "dermis/offline/character.h"
+#include "dermis/runtime/character.h"
 
 namespace dermis {
 
@@ -38,13 +38,6 @@ struct CharacterPoseOptions {
   int displacement_levels = -1;  ///< Displacement levels evaluated (-1: all, 0: none).
   int threads = 1;               ///< Threads of Evaluate() (0: all cores); results do not vary.
 };
-
-/// The rig of skin `skin` of `asset` as the deformers see it: joint j's parent is the index,
-/// within the skin's joint list, of the nearest ancestor node of joint j that is itself one of
-/// the skin's joints (-1 if none); its bind matrix is the inverse of its inverse bind matrix
-/// (sweep.md section 2: not the node's rest transform, and the skinned mesh node's own
-/// transform plays no part); names are the joint nodes' names.
-Status MakeSkinRig(const Asset& asset, Index skin, SkinRig* out);
 
 /// One primitive drawn by one node of CharacterPoser::asset().
 struct DrawnPrimitive {

@@ -8,7 +8,7 @@
 #include "core/byte_stream.h"
 #include "dermis/asset/asset_io.h"
 #include "dermis/core/file_bytes.h"
-#include "dermis/offline/character.h"
+#include "dermis/runtime/character.h"
 
 namespace dermis {
 namespace {

@@ -13,6 +13,7 @@
 
 #include "dermis/asset/asset.h"
 #include "dermis/core/status.h"
+#include "dermis/deform/deformer.h"
 #include "dermis/surface/dsurf.h"
 
 namespace dermis {
@@ -83,5 +84,13 @@ std::uint32_t DsurfFileVersion(std::string_view bytes);
 /// the control mesh tessellation-free single part (no mesh, no bindings); see ReadDsurf() for
 /// plain surfaces.
 Status ReadCharacter(const std::string& path, Character* out);
+
+/// The rig of skin `skin` of `asset` as the deformers see it: joint j's parent is the index,
+/// within the skin's joint list, of the nearest ancestor node of joint j that is itself one of
+/// the skin's joints (-1 if none); its bind matrix is the inverse of its inverse bind matrix
+/// (sweep.md section 2: not the node's rest transform, and the skinned mesh node's own
+/// transform plays no part); names are the joint nodes' names.
+Status MakeSkinRig(const Asset& asset, Index skin, SkinRig* out);
+
 
 }  // namespace dermis

@@ -1,0 +1,69 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+/// \file
+/// \brief Memory layout of an EvaluationPlan as the evaluation kernels read it
+/// (docs/performance.md, "The fast path"). Plain data, no dependencies: shared by the plan
+/// builder and by every instruction-set variant of the kernel.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace dermis {
+
+/// Samples per block (one SIMD register of floats on AVX2).
+constexpr int kPlanLanes = 8;
+
+/// Per-corner fields of a block, each kPlanLanes floats: chart point (x, y), displacement value
+/// and gradient (d, gx, gy), weight psi and its face derivatives (psi_u, psi_v), and the
+/// weighted chart-to-face Jacobian psi * dz/d(u, v) (m00 = psi dx/du, m01 = psi dy/du,
+/// m10 = psi dx/dv, m11 = psi dy/dv). In the one-chart region of a corner (manifold.md
+/// section 6) psi = 1 and the Jacobian is the identity: the normal is then taken from the
+/// chart derivatives themselves, as the scalar evaluator does.
+enum PlanField : int {
+  kFieldX = 0,
+  kFieldY,
+  kFieldD,
+  kFieldGx,
+  kFieldGy,
+  kFieldW,
+  kFieldWu,
+  kFieldWv,
+  kFieldM00,
+  kFieldM01,
+  kFieldM10,
+  kFieldM11,
+  kPlanFields
+};
+
+/// Floats of one block: 4 corners x kPlanFields x kPlanLanes.
+constexpr std::size_t kPlanBlockFloats = 4 * kPlanFields * kPlanLanes;
+
+/// Floats per packed patch: 27 coefficients (coordinate-major, c_mn at 9k + 3m + n), the
+/// fallback normal, 2 of padding.
+constexpr std::size_t kPackedPatchFloats = 32;
+
+/// One block: up to kPlanLanes samples of one control face.
+struct PlanBlock {
+  std::int32_t chart[4];  ///< Vertex of each face corner, or -1 where no lane uses it.
+  std::int32_t index[kPlanLanes];     ///< Output index of each lane.
+  std::int32_t dominant[kPlanLanes];  ///< Vertex whose fallback normal a degenerate lane takes.
+  std::int32_t count;                 ///< Lanes in use (the rest repeat lane 0).
+  std::uint32_t displaced;            ///< Bit a: corner a has a non-zero displacement somewhere.
+};
+
+/// What the kernels read.
+struct PlanView {
+  const PlanBlock* blocks;
+  const float* data;  ///< kPlanBlockFloats per block.
+};
+
+/// Where the kernels write: positions and (optionally) normals, 3 floats each, at byte
+/// strides.
+struct PlanOutput {
+  float* positions;
+  std::size_t position_stride;
+  float* normals;
+  std::size_t normal_stride;
+};
+
+}  // namespace dermis

@@ -1,0 +1,217 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The fast evaluation kernel (docs/performance.md): the displaced, blended surface of Yoon
+// Eq. 3-4 at one block of kPlanLanes samples of one control face, from the pose-independent
+// data of an EvaluationPlan and the pose's packed patch coefficients.
+//
+// Included by one translation unit per instruction set (eval_kernel_generic.cpp,
+// eval_kernel_avx2.cpp), each compiled with its own flags. Everything here therefore has
+// internal linkage (an anonymous namespace) and uses only compiler built-ins and intrinsics,
+// so no inline function of external linkage is ever compiled with two sets of flags.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "dermis/runtime/plan_layout.h"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
+namespace dermis {
+namespace plan_kernel {
+namespace {
+
+typedef float F __attribute__((vector_size(kPlanLanes * sizeof(float))));
+typedef std::int32_t I __attribute__((vector_size(kPlanLanes * sizeof(std::int32_t))));
+
+#define DERMIS_INLINE inline __attribute__((always_inline))
+
+DERMIS_INLINE F Splat(float x) {
+  F r;
+  for (int i = 0; i < kPlanLanes; ++i) r[i] = x;
+  return r;
+}
+
+DERMIS_INLINE F Load(const float* p) {
+  F r;
+  __builtin_memcpy(&r, p, sizeof(F));
+  return r;
+}
+
+// Square root per lane: vsqrtps where the target has it.
+DERMIS_INLINE F Sqrt(F x) {
+  F r;
+#if defined(__AVX__)
+  for (int i = 0; i < kPlanLanes; i += 8) {
+    __m256 v;
+    __builtin_memcpy(&v, reinterpret_cast<const float*>(&x) + i, sizeof(v));
+    v = _mm256_sqrt_ps(v);
+    __builtin_memcpy(reinterpret_cast<float*>(&r) + i, &v, sizeof(v));
+  }
+#elif defined(__SSE__)
+  for (int i = 0; i < kPlanLanes; i += 4) {
+    __m128 v;
+    __builtin_memcpy(&v, reinterpret_cast<const float*>(&x) + i, sizeof(v));
+    v = _mm_sqrt_ps(v);
+    __builtin_memcpy(reinterpret_cast<float*>(&r) + i, &v, sizeof(v));
+  }
+#else
+  for (int i = 0; i < kPlanLanes; ++i) r[i] = __builtin_sqrtf(x[i]);
+#endif
+  return r;
+}
+
+// a ? b : c per lane, with a a comparison result (all bits set or clear).
+DERMIS_INLINE F Select(I mask, F b, F c) {
+  I bi, ci;
+  __builtin_memcpy(&bi, &b, sizeof(I));
+  __builtin_memcpy(&ci, &c, sizeof(I));
+  const I ri = (bi & mask) | (ci & ~mask);
+  F r;
+  __builtin_memcpy(&r, &ri, sizeof(F));
+  return r;
+}
+
+struct V3 {
+  F x, y, z;
+};
+
+DERMIS_INLINE V3 Cross(const V3& a, const V3& b) {
+  return V3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+DERMIS_INLINE F Dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+DERMIS_INLINE V3 Add(const V3& a, const V3& b) { return V3{a.x + b.x, a.y + b.y, a.z + b.z}; }
+DERMIS_INLINE V3 Sub(const V3& a, const V3& b) { return V3{a.x - b.x, a.y - b.y, a.z - b.z}; }
+DERMIS_INLINE V3 Scale(const V3& a, F s) { return V3{a.x * s, a.y * s, a.z * s}; }
+// a + s * b
+DERMIS_INLINE V3 Madd(const V3& a, F s, const V3& b) {
+  return V3{a.x + s * b.x, a.y + s * b.y, a.z + s * b.z};
+}
+
+// Everything one chart contributes at one block: chart surface S_a = P_a + d_a N_a and its
+// chart derivatives (Eq. 3, the frame derivatives of local_patch.cpp), weighted by the
+// partition of unity and mapped to face coordinates with the precomputed Jacobians.
+template <bool kDisplaced>
+DERMIS_INLINE void AccumulateCorner(const float* patch, const float* data, V3* s, V3* su, V3* sv) {
+  const F x = Load(data + kFieldX * kPlanLanes);
+  const F y = Load(data + kFieldY * kPlanLanes);
+  const F two = Splat(2.0f);
+  const F x2 = two * x, y2 = two * y;
+  V3 p, px, py, pxx, pxy, pyy;
+  F* pc[6][3] = {{&p.x, &p.y, &p.z},       {&px.x, &px.y, &px.z},   {&py.x, &py.y, &py.z},
+                 {&pxx.x, &pxx.y, &pxx.z}, {&pxy.x, &pxy.y, &pxy.z}, {&pyy.x, &pyy.y, &pyy.z}};
+  for (int k = 0; k < 3; ++k) {
+    // Coefficient c_mn of coordinate k at patch[k * 9 + 3m + n]: P = sum c_mn x^m y^n.
+    const float* c = patch + k * 9;
+    const F c00 = Splat(c[0]), c01 = Splat(c[1]), c02 = Splat(c[2]);
+    const F c10 = Splat(c[3]), c11 = Splat(c[4]), c12 = Splat(c[5]);
+    const F c20 = Splat(c[6]), c21 = Splat(c[7]), c22 = Splat(c[8]);
+    // A_m = sum_n c_mn y^n, B_m = dA_m/dy.
+    const F a0 = c00 + y * (c01 + y * c02);
+    const F a1 = c10 + y * (c11 + y * c12);
+    const F a2 = c20 + y * (c21 + y * c22);
+    const F b0 = c01 + y2 * c02;
+    const F b1 = c11 + y2 * c12;
+    const F b2 = c21 + y2 * c22;
+    *pc[0][k] = a0 + x * (a1 + x * a2);
+    *pc[1][k] = a1 + x2 * a2;
+    *pc[2][k] = b0 + x * (b1 + x * b2);
+    if (kDisplaced) {
+      *pc[3][k] = two * a2;
+      *pc[4][k] = b1 + x2 * b2;
+      *pc[5][k] = two * (c02 + x * (c12 + x * c22));
+    }
+  }
+  const V3 nr = Cross(px, py);
+  const F l2 = Dot(nr, nr);
+  // The patch is regular where |px x py| > 1e-6 |px| |py| (float's share of local_patch.cpp's
+  // test); elsewhere the frame is the fallback normal with zero derivatives.
+  const I ok = (l2 > Splat(1e-12f) * Dot(px, px) * Dot(py, py)) & (l2 > Splat(1e-30f));
+  const F inv = Splat(1.0f) / Sqrt(Select(ok, l2, Splat(1.0f)));
+  const V3 fb{Splat(patch[27]), Splat(patch[28]), Splat(patch[29])};
+  const V3 n{Select(ok, nr.x * inv, fb.x), Select(ok, nr.y * inv, fb.y),
+             Select(ok, nr.z * inv, fb.z)};
+  V3 xp = p, xx = px, xy = py;
+  if (kDisplaced) {
+    const F d = Load(data + kFieldD * kPlanLanes);
+    const F gx = Load(data + kFieldGx * kPlanLanes);
+    const F gy = Load(data + kFieldGy * kPlanLanes);
+    const V3 dnx = Add(Cross(pxx, py), Cross(px, pxy));
+    const V3 dny = Add(Cross(pxy, py), Cross(px, pyy));
+    const F zero = Splat(0.0f);
+    const F invd = Select(ok, inv, zero) * d;
+    // d * dN/dx = d (dn - N (N . dn)) / |n|
+    const V3 nx = Scale(Sub(dnx, Scale(n, Dot(n, dnx))), invd);
+    const V3 ny = Scale(Sub(dny, Scale(n, Dot(n, dny))), invd);
+    xp = Madd(p, d, n);
+    xx = Add(Madd(px, gx, n), nx);
+    xy = Add(Madd(py, gy, n), ny);
+  }
+  const F w = Load(data + kFieldW * kPlanLanes);
+  const F wu = Load(data + kFieldWu * kPlanLanes);
+  const F wv = Load(data + kFieldWv * kPlanLanes);
+  const F m00 = Load(data + kFieldM00 * kPlanLanes);
+  const F m01 = Load(data + kFieldM01 * kPlanLanes);
+  const F m10 = Load(data + kFieldM10 * kPlanLanes);
+  const F m11 = Load(data + kFieldM11 * kPlanLanes);
+  *s = Madd(*s, w, xp);
+  *su = Madd(Madd(Madd(*su, wu, xp), m00, xx), m01, xy);
+  *sv = Madd(Madd(Madd(*sv, wv, xp), m10, xx), m11, xy);
+}
+
+// Blocks [begin, end) of a plan into caller-owned strided float buffers.
+DERMIS_INLINE void EvaluateBlocks(const PlanView& plan, const float* patches, std::size_t begin,
+                                  std::size_t end, const PlanOutput& out) {
+  for (std::size_t b = begin; b < end; ++b) {
+    const PlanBlock& block = plan.blocks[b];
+    const float* data = plan.data + b * kPlanBlockFloats;
+    const F zero = Splat(0.0f);
+    V3 s{zero, zero, zero}, su = s, sv = s;
+    for (int a = 0; a < 4; ++a) {
+      const std::int32_t v = block.chart[a];
+      if (v < 0) continue;
+      const float* patch = patches + static_cast<std::size_t>(v) * kPackedPatchFloats;
+      const float* corner = data + a * kPlanFields * kPlanLanes;
+      if (block.displaced & (1u << a)) {
+        AccumulateCorner<true>(patch, corner, &s, &su, &sv);
+      } else {
+        AccumulateCorner<false>(patch, corner, &s, &su, &sv);
+      }
+    }
+    const V3 nr = Cross(su, sv);
+    const F l2 = Dot(nr, nr);
+    const I ok = l2 > Splat(1e-30f);
+    const F inv = Splat(1.0f) / Sqrt(Select(ok, l2, Splat(1.0f)));
+    const V3 n = Scale(nr, inv);
+    for (int i = 0; i < block.count; ++i) {
+      const std::size_t index = static_cast<std::size_t>(block.index[i]);
+      float* pos = reinterpret_cast<float*>(reinterpret_cast<unsigned char*>(out.positions) +
+                                            index * out.position_stride);
+      pos[0] = s.x[i];
+      pos[1] = s.y[i];
+      pos[2] = s.z[i];
+      if (out.normals) {
+        float* nrm = reinterpret_cast<float*>(reinterpret_cast<unsigned char*>(out.normals) +
+                                              index * out.normal_stride);
+        if (ok[i]) {
+          nrm[0] = n.x[i];
+          nrm[1] = n.y[i];
+          nrm[2] = n.z[i];
+        } else {
+          const float* fb = patches +
+                            static_cast<std::size_t>(block.dominant[i]) * kPackedPatchFloats + 27;
+          nrm[0] = fb[0];
+          nrm[1] = fb[1];
+          nrm[2] = fb[2];
+        }
+      }
+    }
+  }
+}
+
+#undef DERMIS_INLINE
+
+}  // namespace
+}  // namespace plan_kernel
+}  // namespace dermis
