@@ -9,8 +9,8 @@
 
 #include "dermis/core/status.h"
 #include "dermis/deform/deformer.h"
-#include "dermis/offline/character.h"
 #include "dermis/offline/character_pose.h"
+#include "dermis/runtime/character.h"
 
 namespace dermis::cli {
 

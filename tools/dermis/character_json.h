@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "dermis/offline/character.h"
+#include "dermis/runtime/character.h"
 #include "dermis/surface/dsurf.h"
 
 namespace dermis::cli {

@@ -13,11 +13,11 @@
 
 #include "character_args.h"
 #include "commands.h"
-#include "dermis/offline/character.h"
 #include "dermis/offline/character_export.h"
 #include "dermis/offline/character_pose.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/plugins/import.h"
+#include "dermis/runtime/character.h"
 
 namespace dermis::cli {
 namespace {

@@ -21,9 +21,9 @@
 #include "commands.h"
 #include "dermis/asset/asset.h"
 #include "dermis/core/file_bytes.h"
-#include "dermis/offline/character.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/plugins/import.h"
+#include "dermis/runtime/character.h"
 #include "dermis/surface/dsurf.h"
 
 namespace dermis::cli {
