@@ -15,6 +15,7 @@ endfunction()
 run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix)
 # Every expected file, with the library folder allowed to be multiarch (lib/x86_64-linux-gnu).
 foreach(f include/dermis/surface/surface_evaluator.h include/dermis/plugins/gltf.h
+          include/dermis/dermis.h include/dermis/runtime/runtime.h
           LIB/cmake/dermis/dermisConfig.cmake LIB/cmake/dermis/dermisConfigVersion.cmake
           LIB/pkgconfig/dermis-runtime.pc bin/dermis)
   string(REPLACE "LIB/" "lib/" plain ${f})
@@ -46,4 +47,23 @@ run(${WORK}/runtime_only)
 if(NOT run_output MATCHES "runtime-only ok")
   message(FATAL_ERROR "the runtime-only program did not report success: ${run_output}")
 endif()
-message(STATUS "installed package: find_package and pkg-config consumers built and ran")
+
+# pkg-config from C: the engine_loop sample (C API) built with the C compiler and nothing but
+# pkg-config's flags, run on a surface the installed tool fits; it must need no shared library
+# beyond the C and C++ runtimes.
+run(${CC} -std=c11 ${SOURCE}/samples/engine_loop/engine_loop.c ${flags} -o ${WORK}/engine_loop)
+run(${WORK}/prefix/bin/dermis tessellate --builtin torus -o ${WORK}/torus_dense.obj --level 6 -q)
+run(${WORK}/prefix/bin/dermis fit ${WORK}/torus_dense.obj -o ${WORK}/torus.dsurf
+    --control-vertices 60 -q)
+run(${WORK}/engine_loop ${WORK}/torus.dsurf --frames 3)
+if(NOT run_output MATCHES "engine_loop: ok")
+  message(FATAL_ERROR "the C engine loop did not report success: ${run_output}")
+endif()
+run(ldd ${WORK}/engine_loop)
+string(REPLACE "\n" ";" libs "${run_output}")
+foreach(line ${libs})
+  if(line MATCHES "=>" AND NOT line MATCHES "lib(stdc\\+\\+|m|gcc_s|c)\\.so")
+    message(FATAL_ERROR "the runtime pulled in a shared library: ${line}")
+  endif()
+endforeach()
+message(STATUS "installed package: find_package and pkg-config consumers (C++ and C) built and ran")

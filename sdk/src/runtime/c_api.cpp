@@ -1,0 +1,274 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The C API (dermis/dermis.h) over the C++ runtime (dermis/runtime/runtime.h).
+#include <new>
+#include <string>
+
+#include "dermis/dermis.h"
+#include "dermis/runtime/runtime.h"
+
+struct dermis_character {
+  std::unique_ptr<dermis::RuntimeCharacter> impl;
+};
+struct dermis_output {
+  std::unique_ptr<dermis::RuntimeOutput> impl;
+};
+struct dermis_instance {
+  std::unique_ptr<dermis::RuntimeInstance> impl;
+};
+
+namespace {
+
+thread_local std::string g_last_error;
+
+dermis_status Fail(dermis_status status, const std::string& message) {
+  g_last_error = message;
+  return status;
+}
+
+dermis_status FromStatus(const dermis::Status& s) {
+  if (s.ok()) return DERMIS_OK;
+  switch (s.code()) {
+    case dermis::StatusCode::kInvalidInput:
+      return Fail(DERMIS_ERROR_INVALID_INPUT, s.message());
+    case dermis::StatusCode::kIoError:
+      return Fail(DERMIS_ERROR_IO, s.message());
+    case dermis::StatusCode::kUnsupported:
+      return Fail(DERMIS_ERROR_UNSUPPORTED, s.message());
+    default:
+      return Fail(DERMIS_ERROR_INTERNAL, s.message());
+  }
+}
+
+bool PartOk(const dermis_character* c, size_t part) { return c && part < c->impl->num_parts(); }
+
+}  // namespace
+
+extern "C" {
+
+const char* dermis_version(void) { return DERMIS_VERSION_STRING; }
+
+const char* dermis_last_error(void) { return g_last_error.c_str(); }
+
+const char* dermis_status_string(dermis_status status) {
+  switch (status) {
+    case DERMIS_OK:
+      return "ok";
+    case DERMIS_ERROR_INVALID_ARGUMENT:
+      return "invalid argument";
+    case DERMIS_ERROR_INVALID_INPUT:
+      return "invalid input";
+    case DERMIS_ERROR_IO:
+      return "i/o error";
+    case DERMIS_ERROR_UNSUPPORTED:
+      return "unsupported";
+    case DERMIS_ERROR_INTERNAL:
+      return "internal error";
+  }
+  return "unknown status";
+}
+
+dermis_status dermis_character_load(const char* path, dermis_character** out) {
+  if (!path || !out)
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_character_load: null argument");
+  *out = nullptr;
+  std::unique_ptr<dermis::RuntimeCharacter> c;
+  const dermis_status s = FromStatus(dermis::RuntimeCharacter::Load(path, &c));
+  if (s != DERMIS_OK) return s;
+  *out = new (std::nothrow) dermis_character{std::move(c)};
+  return *out ? DERMIS_OK : Fail(DERMIS_ERROR_INTERNAL, "out of memory");
+}
+
+dermis_status dermis_character_load_memory(const void* bytes, size_t size, const char* name,
+                                           dermis_character** out) {
+  if ((!bytes && size > 0) || !out) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_character_load_memory: null argument");
+  }
+  *out = nullptr;
+  std::unique_ptr<dermis::RuntimeCharacter> c;
+  const std::string_view view(static_cast<const char*>(bytes), size);
+  const dermis_status s =
+      FromStatus(dermis::RuntimeCharacter::FromBytes(view, name ? name : "memory", &c));
+  if (s != DERMIS_OK) return s;
+  *out = new (std::nothrow) dermis_character{std::move(c)};
+  return *out ? DERMIS_OK : Fail(DERMIS_ERROR_INTERNAL, "out of memory");
+}
+
+void dermis_character_destroy(dermis_character* character) { delete character; }
+
+size_t dermis_character_part_count(const dermis_character* c) {
+  return c ? c->impl->num_parts() : 0;
+}
+
+size_t dermis_character_joint_count(const dermis_character* c, size_t part) {
+  return PartOk(c, part) ? c->impl->num_joints(part) : 0;
+}
+
+size_t dermis_character_control_vertex_count(const dermis_character* c, size_t part) {
+  return PartOk(c, part) ? c->impl->num_control_vertices(part) : 0;
+}
+
+int32_t dermis_character_joint_parent(const dermis_character* c, size_t part, size_t joint) {
+  const dermis::SkinRig* rig = PartOk(c, part) ? c->impl->rig(part) : nullptr;
+  return rig && joint < rig->parents.size() ? rig->parents[joint] : -1;
+}
+
+dermis_status dermis_character_joint_bind(const dermis_character* c, size_t part, size_t joint,
+                                          float* out) {
+  const dermis::SkinRig* rig = PartOk(c, part) ? c->impl->rig(part) : nullptr;
+  if (!rig || joint >= rig->bind.size() || !out) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_character_joint_bind: part " +
+                                                   std::to_string(part) + " joint " +
+                                                   std::to_string(joint) + " out of range");
+  }
+  for (int col = 0; col < 4; ++col) {
+    for (int row = 0; row < 4; ++row)
+      out[4 * col + row] = static_cast<float>(rig->bind[joint][col][row]);
+  }
+  return DERMIS_OK;
+}
+
+size_t dermis_character_bound_vertex_count(const dermis_character* c, size_t part) {
+  return PartOk(c, part) ? c->impl->bound_vertices(part).size() : 0;
+}
+
+dermis_status dermis_character_bound_vertex(const dermis_character* c, size_t part, size_t index,
+                                            int32_t* mesh, int32_t* primitive, int32_t* vertex) {
+  if (!PartOk(c, part) || index >= c->impl->bound_vertices(part).size()) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_character_bound_vertex: part " +
+                                                   std::to_string(part) + " vertex " +
+                                                   std::to_string(index) + " out of range");
+  }
+  const dermis::BoundVertexRef& r = c->impl->bound_vertices(part)[index];
+  if (mesh) *mesh = r.mesh;
+  if (primitive) *primitive = r.primitive;
+  if (vertex) *vertex = r.vertex;
+  return DERMIS_OK;
+}
+
+void dermis_output_desc_init(dermis_output_desc* desc) {
+  if (!desc) return;
+  desc->kind = DERMIS_OUTPUT_LEVEL;
+  desc->level = 4;
+  desc->displacement_levels = -1;
+  desc->threads = 1;
+}
+
+dermis_status dermis_output_create(const dermis_character* c, size_t part,
+                                   const dermis_output_desc* desc, dermis_output** out) {
+  if (!c || !desc || !out)
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_output_create: null argument");
+  *out = nullptr;
+  if (!PartOk(c, part)) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                "dermis_output_create: part " + std::to_string(part) + " does not exist");
+  }
+  if (desc->kind != DERMIS_OUTPUT_BOUND && desc->kind != DERMIS_OUTPUT_LEVEL) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_output_create: unknown output kind");
+  }
+  dermis::OutputSpec spec;
+  spec.kind =
+      desc->kind == DERMIS_OUTPUT_BOUND ? dermis::OutputKind::kBound : dermis::OutputKind::kLevel;
+  spec.level = desc->level;
+  spec.displacement_levels = desc->displacement_levels;
+  spec.threads = desc->threads;
+  std::unique_ptr<dermis::RuntimeOutput> o;
+  const dermis::Status s = dermis::RuntimeOutput::Build(*c->impl, part, spec, &o);
+  if (!s.ok()) {
+    return Fail(s.code() == dermis::StatusCode::kInvalidInput ? DERMIS_ERROR_INVALID_ARGUMENT
+                                                              : DERMIS_ERROR_INTERNAL,
+                s.message());
+  }
+  *out = new (std::nothrow) dermis_output{std::move(o)};
+  return *out ? DERMIS_OK : Fail(DERMIS_ERROR_INTERNAL, "out of memory");
+}
+
+void dermis_output_destroy(dermis_output* output) { delete output; }
+
+size_t dermis_output_vertex_count(const dermis_output* o) {
+  return o ? o->impl->num_vertices() : 0;
+}
+
+size_t dermis_output_triangle_count(const dermis_output* o) {
+  return o ? o->impl->triangles().size() / 3 : 0;
+}
+
+const uint32_t* dermis_output_triangles(const dermis_output* o) {
+  return o && !o->impl->triangles().empty() ? o->impl->triangles().data() : nullptr;
+}
+
+size_t dermis_output_block_count(const dermis_output* o) {
+  return o ? o->impl->plan().num_blocks() : 0;
+}
+
+dermis_status dermis_instance_create(const dermis_character* c, dermis_deformer deformer,
+                                     dermis_instance** out) {
+  if (!c || !out)
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_instance_create: null argument");
+  *out = nullptr;
+  if (deformer != DERMIS_DEFORMER_LBS && deformer != DERMIS_DEFORMER_DQS &&
+      deformer != DERMIS_DEFORMER_SWEEP) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_instance_create: unknown deformer");
+  }
+  std::unique_ptr<dermis::RuntimeInstance> inst;
+  const dermis_status s = FromStatus(dermis::RuntimeInstance::Create(
+      *c->impl, static_cast<dermis::DeformerKind>(deformer), &inst));
+  if (s != DERMIS_OK) return s;
+  *out = new (std::nothrow) dermis_instance{std::move(inst)};
+  return *out ? DERMIS_OK : Fail(DERMIS_ERROR_INTERNAL, "out of memory");
+}
+
+void dermis_instance_destroy(dermis_instance* instance) { delete instance; }
+
+void dermis_instance_reset_history(dermis_instance* instance) {
+  if (instance) instance->impl->ResetHistory();
+}
+
+dermis_status dermis_instance_pose(dermis_instance* instance, size_t part,
+                                   const float* skin_matrices, size_t count) {
+  if (!instance) return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_instance_pose: null instance");
+  dermis::PoseJob job;
+  job.instance = instance->impl.get();
+  job.part = part;
+  job.skin_matrices = skin_matrices;
+  job.num_skin_matrices = count;
+  if (!job.Validate()) {
+    const dermis::RuntimeCharacter& c = instance->impl->character();
+    if (part >= c.num_parts()) {
+      return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                  "dermis_instance_pose: part " + std::to_string(part) + " does not exist");
+    }
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                "dermis_instance_pose: part " + std::to_string(part) + " needs " +
+                    std::to_string(c.num_joints(part)) + " skin matrices, got " +
+                    std::to_string(count) + (skin_matrices ? "" : " (null pointer)"));
+  }
+  if (!job.Run()) {
+    return Fail(DERMIS_ERROR_INVALID_INPUT,
+                "dermis_instance_pose: a skin matrix is not finite (pose unchanged)");
+  }
+  return DERMIS_OK;
+}
+
+dermis_status dermis_evaluate(const dermis_instance* instance, const dermis_output* output,
+                              size_t block_begin, size_t block_end, float* positions,
+                              size_t position_stride, float* normals, size_t normal_stride) {
+  if (!instance || !output)
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_evaluate: null handle");
+  dermis::EvaluateJob job;
+  job.output = output->impl.get();
+  job.instance = instance->impl.get();
+  job.block_begin = block_begin;
+  job.block_end = block_end;
+  job.buffers.positions = positions;
+  job.buffers.position_stride = position_stride;
+  job.buffers.normals = normals;
+  job.buffers.normal_stride = normal_stride;
+  if (!job.Run()) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                "dermis_evaluate: invalid arguments (an output of another character, a block "
+                "range past the end, a null position buffer or a stride below 12 bytes)");
+  }
+  return DERMIS_OK;
+}
+
+}  // extern "C"
