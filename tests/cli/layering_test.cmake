@@ -1,16 +1,29 @@
-# Fails if runtime or core code includes offline headers, Eigen, or any plugin.
+cmake_policy(SET CMP0057 NEW)
+# Fails if runtime or core code includes offline headers, Eigen, or any plugin, or uses
+# exceptions. The surface, deform and core modules do not see the asset module either; the
+# runtime module (loading characters, jobs, C API) does: it is core + GLM only too.
 file(GLOB_RECURSE files
      ${ROOT}/sdk/include/dermis/core/*.h ${ROOT}/sdk/include/dermis/surface/*.h
      ${ROOT}/sdk/include/dermis/deform/*.h ${ROOT}/sdk/src/core/*.cpp
      ${ROOT}/sdk/src/surface/*.cpp ${ROOT}/sdk/src/deform/*.cpp ${ROOT}/sdk/src/deform/*.h)
-foreach(f ${files})
+file(GLOB_RECURSE runtime_files ${ROOT}/sdk/include/dermis/runtime/*.h
+     ${ROOT}/sdk/include/dermis/dermis.h ${ROOT}/sdk/src/runtime/*.cpp ${ROOT}/sdk/src/runtime/*.h)
+foreach(f ${files} ${runtime_files})
   file(STRINGS ${f} includes REGEX "^#include")
   foreach(line ${includes})
-    if(line MATCHES "dermis/offline|dermis/asset|Eigen|plugins|tiny_gltf|assimp")
+    if(line MATCHES "dermis/offline|Eigen|plugins|tiny_gltf|assimp")
       message(FATAL_ERROR "${f}: runtime code must not use '${line}'")
     endif()
+    if(line MATCHES "dermis/asset" AND NOT f IN_LIST runtime_files)
+      message(FATAL_ERROR "${f}: only the runtime module may use the asset module: '${line}'")
+    endif()
   endforeach()
+  file(STRINGS ${f} exceptions REGEX "(^|[^a-z_])(throw|try|catch)[ ({]")
+  if(exceptions)
+    message(FATAL_ERROR "${f}: runtime code must not use exceptions: ${exceptions}")
+  endif()
 endforeach()
+list(APPEND files ${runtime_files})
 list(LENGTH files n)
 message(STATUS "checked ${n} runtime files")
 

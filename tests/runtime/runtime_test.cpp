@@ -2,6 +2,8 @@
 // The engine runtime: the precomputed fast path against the scalar reference evaluator
 // (EvaluateSurface, double precision), independence of block splits, threads and instruction
 // sets, and the character jobs against the offline poser.
+#include "dermis/runtime/runtime.h"
+
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <glm/gtc/quaternion.hpp>
@@ -11,7 +13,6 @@
 #include "dermis/offline/character_fit.h"
 #include "dermis/offline/character_pose.h"
 #include "dermis/runtime/evaluation_plan.h"
-#include "dermis/runtime/runtime.h"
 #include "dermis/surface/surface_evaluator.h"
 #include "test_meshes.h"
 
@@ -44,9 +45,9 @@ std::vector<SampleLocation> TestSamples(const ManifoldDomain& domain) {
   test::Lcg rng(7);
   for (Index f = 0; f < domain.num_faces(); ++f) {
     for (int k = 0; k < 9; ++k) s.push_back({f, rng.Next(), rng.Next()});
-    s.push_back({f, 0.004, 0.003});   // one-chart square of corner 0
-    s.push_back({f, 0.998, 0.0});     // near corner 1, on an edge
-    s.push_back({f, 1.0, 1.0});       // corner 2 itself
+    s.push_back({f, 0.004, 0.003});  // one-chart square of corner 0
+    s.push_back({f, 0.998, 0.0});    // near corner 1, on an edge
+    s.push_back({f, 1.0, 1.0});      // corner 2 itself
   }
   return s;
 }
@@ -69,8 +70,8 @@ Compared CompareWithScalar(const ManifoldDomain& domain, const std::vector<Local
   out.normals = nrm.data();
   REQUIRE(EvaluatePlan(plan, packed.data(), 0, plan.num_blocks(), out, path));
   std::vector<Vec3> ref(samples.size()), ref_n(samples.size());
-  REQUIRE(EvaluateSamples(domain, patches.data(), disp, samples.data(), samples.size(),
-                          ref.data(), ref_n.data()));
+  REQUIRE(EvaluateSamples(domain, patches.data(), disp, samples.data(), samples.size(), ref.data(),
+                          ref_n.data()));
   const double diag = Diagonal(ref);
   Compared c;
   for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -96,12 +97,12 @@ TEST_CASE("runtime: the fast path equals the scalar reference") {
     cs.domain->FitPatches(moved.data(), patches.data());
     const test::WavyDisplacement wavy(0.04);
     const std::vector<SampleLocation> samples = TestSamples(*cs.domain);
-    for (const Displacement* disp : {static_cast<const Displacement*>(&wavy),
-                                     static_cast<const Displacement*>(nullptr)}) {
+    for (const Displacement* disp :
+         {static_cast<const Displacement*>(&wavy), static_cast<const Displacement*>(nullptr)}) {
       for (SimdPath path : AvailablePaths()) {
         const Compared c = CompareWithScalar(*cs.domain, patches, disp, samples, path);
-        INFO(name << " " << SimdPathName(path) << (disp ? " displaced" : " domain")
-                  << ": position " << c.position << " normal " << c.normal);
+        INFO(name << " " << SimdPathName(path) << (disp ? " displaced" : " domain") << ": position "
+                  << c.position << " normal " << c.normal);
         CHECK(c.position < 1e-5);
         CHECK(c.normal < 1e-5);
       }
@@ -117,8 +118,7 @@ TEST_CASE("runtime: results do not depend on threads, block splits or the plan's
   for (int t = 0; t < 2; ++t) {
     EvaluationPlanOptions o;
     o.threads = t + 1;
-    REQUIRE(EvaluationPlan::Build(*cs.domain, &wavy, samples.data(), samples.size(), o,
-                                  &plans[t])
+    REQUIRE(EvaluationPlan::Build(*cs.domain, &wavy, samples.data(), samples.size(), o, &plans[t])
                 .ok());
   }
   REQUIRE(plans[0].num_blocks() == plans[1].num_blocks());
@@ -209,7 +209,8 @@ TEST_CASE("runtime: character jobs match the offline poser") {
       std::vector<float> palette(16 * joints.size());
       for (std::size_t j = 0; j < joints.size(); ++j) {
         for (int c = 0; c < 4; ++c) {
-          for (int r = 0; r < 4; ++r) palette[16 * j + 4 * c + r] = static_cast<float>(joints[j][c][r]);
+          for (int r = 0; r < 4; ++r)
+            palette[16 * j + 4 * c + r] = static_cast<float>(joints[j][c][r]);
         }
       }
       for (std::size_t p = 0; p < rc->num_parts(); ++p) {
@@ -247,7 +248,8 @@ TEST_CASE("runtime: character jobs match the offline poser") {
           ++d;
         const Vec3 want = posed[d].positions[static_cast<std::size_t>(refs[i].vertex)];
         const Vec3 want_n = posed[d].normals[static_cast<std::size_t>(refs[i].vertex)];
-        worst = std::max(worst, glm::length(Vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]) - want));
+        worst =
+            std::max(worst, glm::length(Vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]) - want));
         worst_n = std::max(worst_n,
                            glm::length(Vec3(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]) - want_n));
       }

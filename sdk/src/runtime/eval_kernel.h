@@ -99,7 +99,7 @@ DERMIS_INLINE void AccumulateCorner(const float* patch, const float* data, V3* s
   const F two = Splat(2.0f);
   const F x2 = two * x, y2 = two * y;
   V3 p, px, py, pxx, pxy, pyy;
-  F* pc[6][3] = {{&p.x, &p.y, &p.z},       {&px.x, &px.y, &px.z},   {&py.x, &py.y, &py.z},
+  F* pc[6][3] = {{&p.x, &p.y, &p.z},       {&px.x, &px.y, &px.z},    {&py.x, &py.y, &py.z},
                  {&pxx.x, &pxx.y, &pxx.z}, {&pxy.x, &pxy.y, &pxy.z}, {&pyy.x, &pyy.y, &pyy.z}};
   for (int k = 0; k < 3; ++k) {
     // Coefficient c_mn of coordinate k at patch[k * 9 + 3m + n]: P = sum c_mn x^m y^n.
@@ -199,8 +199,8 @@ DERMIS_INLINE void EvaluateBlocks(const PlanView& plan, const float* patches, st
           nrm[1] = n.y[i];
           nrm[2] = n.z[i];
         } else {
-          const float* fb = patches +
-                            static_cast<std::size_t>(block.dominant[i]) * kPackedPatchFloats + 27;
+          const float* fb =
+              patches + static_cast<std::size_t>(block.dominant[i]) * kPackedPatchFloats + 27;
           nrm[0] = fb[0];
           nrm[1] = fb[1];
           nrm[2] = fb[2];

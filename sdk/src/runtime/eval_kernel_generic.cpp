@@ -5,7 +5,7 @@
 namespace dermis {
 
 void EvaluatePlanBlocks_generic(const PlanView& plan, const float* patches, std::size_t begin,
-                             std::size_t end, const PlanOutput& out) {
+                                std::size_t end, const PlanOutput& out) {
   plan_kernel::EvaluateBlocks(plan, patches, begin, end, out);
 }
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <thread>
 
+#include "dermis/runtime/plan_layout.h"
 #include "dermis/surface/blend.h"
 #include "dermis/surface/chart.h"
-#include "dermis/runtime/plan_layout.h"
 
 namespace dermis {
 
@@ -50,7 +50,7 @@ void PrecomputeSample(const ManifoldDomain& domain, const Displacement* displace
   float zero[kPlanFields] = {};
   for (int a = 0; a < 4; ++a) SetLane(data + a * kPlanFields * kPlanLanes, lane, zero);
 
-  auto chart_terms = [&](int a, Vec2 cd, float (&f)[kPlanFields], glm::dmat2* jac) {
+  auto chart_terms = [&](int a, Vec2 cd, float(&f)[kPlanFields], glm::dmat2* jac) {
     const Index h = base + a;
     const Index v = topo.halfedge_origin(h);
     Vec2 z;
@@ -138,7 +138,7 @@ Status EvaluationPlan::Build(const ManifoldDomain& domain, const Displacement* d
   for (std::size_t i = 0; i < count; ++i) {
     if (!ValidLocation(domain, samples[i])) {
       return Status::InvalidInput("EvaluationPlan: sample " + std::to_string(i) +
-                                     " is not a valid (face, u, v) of the surface");
+                                  " is not a valid (face, u, v) of the surface");
     }
   }
   // Samples grouped by face (stable: by face, then by index), kPlanLanes per block.
@@ -175,9 +175,9 @@ Status EvaluationPlan::Build(const ManifoldDomain& domain, const Displacement* d
       block.count = static_cast<std::int32_t>(end - begin);
       for (int lane = 0; lane < kPlanLanes; ++lane) {
         // Unused lanes repeat lane 0 (finite values, results dropped).
-        const std::size_t k = begin + (static_cast<std::size_t>(lane) < end - begin
-                                           ? static_cast<std::size_t>(lane)
-                                           : 0);
+        const std::size_t k =
+            begin +
+            (static_cast<std::size_t>(lane) < end - begin ? static_cast<std::size_t>(lane) : 0);
         block.index[lane] = order[k];
         PrecomputeSample(domain, displacement, samples[order[k]], &block, data, lane);
       }
@@ -195,7 +195,8 @@ Status EvaluationPlan::Build(const ManifoldDomain& domain, const Displacement* d
   };
   unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
                                          : std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(1, num_blocks / 64)));
+  threads = static_cast<unsigned>(
+      std::min<std::size_t>(threads, std::max<std::size_t>(1, num_blocks / 64)));
   if (threads <= 1) {
     build_range(0, num_blocks);
   } else {
@@ -249,9 +250,8 @@ const char* SimdPathName(SimdPath path) {
   return path == SimdPath::kAvx2 ? "avx2" : "generic";
 }
 
-bool EvaluatePlan(const EvaluationPlan& plan, const float* packed_patches,
-                  std::size_t block_begin, std::size_t block_end, const PlanOutputBuffers& out,
-                  SimdPath path) {
+bool EvaluatePlan(const EvaluationPlan& plan, const float* packed_patches, std::size_t block_begin,
+                  std::size_t block_end, const PlanOutputBuffers& out, SimdPath path) {
   if (block_begin > block_end || block_end > plan.num_blocks()) return false;
   if (block_begin == block_end) return true;
   if (!packed_patches || !out.positions || out.position_stride < 3 * sizeof(float)) return false;

@@ -58,7 +58,8 @@ Status RuntimeCharacter::FromCharacter(Character character,
   r->rig_ok_.assign(c.asset.skins.size(), false);
   for (std::size_t p = 0; p < c.parts.size(); ++p) {
     const CharacterPart& part = c.parts[p];
-    if (!part.surface.domain) return Status::InvalidInput(name + ": part " + std::to_string(p) + " has no surface");
+    if (!part.surface.domain)
+      return Status::InvalidInput(name + ": part " + std::to_string(p) + " has no surface");
     const std::size_t n = static_cast<std::size_t>(part.surface.domain->num_vertices());
     if (part.surface.rest_positions.size() != n) {
       return Status::InvalidInput(name + ": part " + std::to_string(p) +
@@ -92,8 +93,8 @@ Status RuntimeCharacter::FromCharacter(Character character,
                                       std::to_string(b.part) + ", which does not exist");
         }
         const std::size_t p = static_cast<std::size_t>(b.part);
-        r->bound_[p].push_back(BoundVertexRef{static_cast<Index>(m), static_cast<Index>(q),
-                                              static_cast<Index>(v)});
+        r->bound_[p].push_back(
+            BoundVertexRef{static_cast<Index>(m), static_cast<Index>(q), static_cast<Index>(v)});
         r->locations_[p].push_back(SampleLocation{b.face, b.u, b.v});
       }
     }
@@ -133,8 +134,7 @@ Status RuntimeOutput::Build(const RuntimeCharacter& character, std::size_t part,
     return Status::InvalidInput(name + ": part " + std::to_string(part) + " does not exist");
   }
   if (spec.kind == OutputKind::kLevel && (spec.level < 1 || spec.level > 64)) {
-    return Status::InvalidInput("output level must be in 1..64, got " +
-                                   std::to_string(spec.level));
+    return Status::InvalidInput("output level must be in 1..64, got " + std::to_string(spec.level));
   }
   if (spec.displacement_levels < -1) {
     return Status::InvalidInput("displacement levels must be -1 (all) or >= 0");
@@ -149,8 +149,8 @@ Status RuntimeOutput::Build(const RuntimeCharacter& character, std::size_t part,
   if (surface.displacement && spec.displacement_levels != 0) {
     disp = surface.displacement.get();
     if (spec.displacement_levels > 0) {
-      truncated.reset(new TruncatedDisplacement(surface.displacement.get(),
-                                                spec.displacement_levels));
+      truncated.reset(
+          new TruncatedDisplacement(surface.displacement.get(), spec.displacement_levels));
       disp = truncated.get();
     }
   }
@@ -161,8 +161,8 @@ Status RuntimeOutput::Build(const RuntimeCharacter& character, std::size_t part,
     TessellationPattern pattern;
     s = TessellationPattern::Build(surface.domain->topology(), spec.level, &pattern);
     if (!s.ok()) return s;
-    s = EvaluationPlan::Build(*surface.domain, disp, pattern.samples.data(),
-                              pattern.samples.size(), po, &r->plan_);
+    s = EvaluationPlan::Build(*surface.domain, disp, pattern.samples.data(), pattern.samples.size(),
+                              po, &r->plan_);
     r->triangles_ = std::move(pattern.triangles);
   } else {
     const std::vector<SampleLocation>& loc = character.bound_locations(part);

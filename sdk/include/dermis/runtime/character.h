@@ -92,5 +92,4 @@ Status ReadCharacter(const std::string& path, Character* out);
 /// transform plays no part); names are the joint nodes' names.
 Status MakeSkinRig(const Asset& asset, Index skin, SkinRig* out);
 
-
 }  // namespace dermis

@@ -102,8 +102,8 @@ struct PlanOutputBuffers {
 /// where the surface is degenerate. Disjoint block ranges may run concurrently; no allocation,
 /// no exceptions. Returns false (writing nothing) if the range or buffers are invalid or the
 /// path is not available.
-bool EvaluatePlan(const EvaluationPlan& plan, const float* packed_patches,
-                  std::size_t block_begin, std::size_t block_end, const PlanOutputBuffers& out,
+bool EvaluatePlan(const EvaluationPlan& plan, const float* packed_patches, std::size_t block_begin,
+                  std::size_t block_end, const PlanOutputBuffers& out,
                   SimdPath path = SimdPath::kAuto);
 
 }  // namespace dermis

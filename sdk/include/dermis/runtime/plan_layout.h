@@ -44,7 +44,7 @@ constexpr std::size_t kPackedPatchFloats = 32;
 
 /// One block: up to kPlanLanes samples of one control face.
 struct PlanBlock {
-  std::int32_t chart[4];  ///< Vertex of each face corner, or -1 where no lane uses it.
+  std::int32_t chart[4];              ///< Vertex of each face corner, or -1 where no lane uses it.
   std::int32_t index[kPlanLanes];     ///< Output index of each lane.
   std::int32_t dominant[kPlanLanes];  ///< Vertex whose fallback normal a degenerate lane takes.
   std::int32_t count;                 ///< Lanes in use (the rest repeat lane 0).

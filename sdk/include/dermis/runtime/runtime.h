@@ -65,9 +65,9 @@ class RuntimeCharacter {
  private:
   RuntimeCharacter() = default;
   Character character_;
-  std::vector<SkinRig> rigs_;      // per skin
-  std::vector<bool> rig_ok_;       // per skin
-  std::vector<std::vector<BoundVertexRef>> bound_;       // per part
+  std::vector<SkinRig> rigs_;                           // per skin
+  std::vector<bool> rig_ok_;                            // per skin
+  std::vector<std::vector<BoundVertexRef>> bound_;      // per part
   std::vector<std::vector<SampleLocation>> locations_;  // per part
 };
 

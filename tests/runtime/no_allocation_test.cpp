@@ -1,0 +1,127 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The per-frame runtime calls do not allocate: this executable replaces the global operator
+// new and counts every call while PoseJob::Run(), EvaluateJob::Run() and the C API's
+// dermis_instance_pose() / dermis_evaluate() run, for every deformer.
+#include <algorithm>
+#include <atomic>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+
+#include "dermis/dermis.h"
+#include "dermis/offline/character_fit.h"
+#include "dermis/runtime/runtime.h"
+#include "test_meshes.h"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace dermis {
+
+TEST_CASE("runtime: per-frame calls do not allocate") {
+  Character ch;
+  CharacterFitOptions options;
+  REQUIRE(FitCharacter(test::TwoCylinders(), options, &ch, nullptr).ok());
+  const std::string bytes = SerializeCharacter(ch);
+  std::unique_ptr<RuntimeCharacter> rc;
+  REQUIRE(RuntimeCharacter::FromBytes(bytes, "cylinders.dsurf", &rc).ok());
+  std::vector<float> palette(32, 0.0f);
+  for (int j = 0; j < 2; ++j)
+    for (int k = 0; k < 4; ++k) palette[16 * j + 5 * k] = 1.0f;
+  for (DeformerKind kind : {DeformerKind::kLbs, DeformerKind::kDqs, DeformerKind::kSweep}) {
+    std::unique_ptr<RuntimeInstance> inst;
+    REQUIRE(RuntimeInstance::Create(*rc, kind, &inst).ok());
+    std::vector<std::unique_ptr<RuntimeOutput>> outputs;
+    std::vector<std::vector<float>> buffers;
+    for (std::size_t p = 0; p < rc->num_parts(); ++p) {
+      for (OutputKind ok : {OutputKind::kBound, OutputKind::kLevel}) {
+        OutputSpec spec;
+        spec.kind = ok;
+        spec.level = 5;
+        std::unique_ptr<RuntimeOutput> o;
+        REQUIRE(RuntimeOutput::Build(*rc, p, spec, &o).ok());
+        buffers.emplace_back(6 * o->num_vertices());
+        outputs.push_back(std::move(o));
+      }
+    }
+    long during = 0;
+    bool all_ok = true;  // checked after the counted windows (Catch's macros may allocate)
+    for (int frame = 0; frame < 5; ++frame) {
+      // A bend of joint 1 about z at its bind position (y = 1), growing frame by frame.
+      const float a = 0.3f * static_cast<float>(frame);
+      const float c = std::cos(a), s = std::sin(a);
+      // T(0,1,0) R T(0,-1,0), column-major.
+      const float m[16] = {c, s, 0, 0, -s, c, 0, 0, 0, 0, 1, 0, s, 1.0f - c, 0, 1};
+      std::copy(m, m + 16, palette.begin() + 16);
+      const long before = g_allocations.load();
+      for (std::size_t p = 0; p < rc->num_parts(); ++p) {
+        PoseJob job;
+        job.instance = inst.get();
+        job.part = p;
+        job.skin_matrices = palette.data();
+        job.num_skin_matrices = 2;
+        all_ok = job.Run() && all_ok;
+      }
+      for (std::size_t k = 0; k < outputs.size(); ++k) {
+        EvaluateJob job;
+        job.output = outputs[k].get();
+        job.instance = inst.get();
+        job.buffers.positions = buffers[k].data();
+        job.buffers.normals = buffers[k].data() + 3;
+        job.buffers.position_stride = job.buffers.normal_stride = 6 * sizeof(float);
+        all_ok = job.Run() && all_ok;
+      }
+      during += g_allocations.load() - before;
+    }
+    INFO(DeformerName(kind));
+    CHECK(all_ok);
+    CHECK(during == 0);
+  }
+  // The same through the C API.
+  dermis_character* c = nullptr;
+  REQUIRE(dermis_character_load_memory(bytes.data(), bytes.size(), "c.dsurf", &c) == DERMIS_OK);
+  dermis_instance* inst = nullptr;
+  REQUIRE(dermis_instance_create(c, DERMIS_DEFORMER_SWEEP, &inst) == DERMIS_OK);
+  dermis_output_desc desc;
+  dermis_output_desc_init(&desc);
+  dermis_output* out = nullptr;
+  REQUIRE(dermis_output_create(c, 0, &desc, &out) == DERMIS_OK);
+  std::vector<float> buf(3 * dermis_output_vertex_count(out));
+  const long before = g_allocations.load();
+  bool c_ok = true;
+  for (int frame = 0; frame < 3; ++frame) {
+    c_ok = dermis_instance_pose(inst, 0, palette.data(), 2) == DERMIS_OK && c_ok;
+    c_ok = dermis_evaluate(inst, out, 0, SIZE_MAX, buf.data(), 12, nullptr, 0) == DERMIS_OK && c_ok;
+  }
+  const long c_allocations = g_allocations.load() - before;
+  CHECK(c_ok);
+  CHECK(c_allocations == 0);
+  // An error records a message (the one case that may allocate) and says what is wrong.
+  CHECK(dermis_instance_pose(inst, 0, palette.data(), 1) == DERMIS_ERROR_INVALID_ARGUMENT);
+  CHECK(std::string(dermis_last_error()).find("needs 2 skin matrices, got 1") != std::string::npos);
+  CHECK(dermis_evaluate(inst, out, 5, 2, buf.data(), 12, nullptr, 0) ==
+        DERMIS_ERROR_INVALID_ARGUMENT);
+  dermis_output_destroy(out);
+  dermis_instance_destroy(inst);
+  dermis_character_destroy(c);
+  dermis_character_destroy(nullptr);
+}
+
+}  // namespace dermis
