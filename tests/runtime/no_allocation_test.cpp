@@ -1,6 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The per-frame runtime calls do not allocate: this executable replaces the global operator
-// new and counts every call while PoseJob::Run(), EvaluateJob::Run() and the C API's
+// new (every non-aligned form, so that new and delete stay paired under AddressSanitizer) and
+// counts every call while PoseJob::Run(), EvaluateJob::Run() and the C API's
 // dermis_instance_pose() / dermis_evaluate() run, for every deformer.
 #include <algorithm>
 #include <atomic>
@@ -28,6 +29,16 @@ void* operator new[](std::size_t size) {
   if (void* p = std::malloc(size ? size : 1)) return p;
   throw std::bad_alloc();
 }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return std::malloc(size ? size : 1);
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return std::malloc(size ? size : 1);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }

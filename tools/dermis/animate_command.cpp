@@ -59,42 +59,6 @@ std::string FormatSeconds(double t) {
   return std::string(buffer, r.ptr);
 }
 
-std::string ClipList(const Asset& asset) {
-  if (asset.animations.empty()) return "it has no clips";
-  std::string list = "clips:";
-  for (std::size_t c = 0; c < asset.animations.size(); ++c) {
-    list += (c ? ", " : " ") + std::to_string(c) + " '" + asset.animations[c].name + "'";
-  }
-  return list;
-}
-
-/// The clip named by `arg` (a name first, then an index; "rest": the rest pose, -1).
-Status ResolveClip(const Asset& asset, const std::string& input, const std::string& arg,
-                   int* clip) {
-  if (arg.empty()) {
-    *clip = asset.animations.empty() ? -1 : 0;
-    return Status::Ok();
-  }
-  for (std::size_t c = 0; c < asset.animations.size(); ++c) {
-    if (asset.animations[c].name == arg) {
-      *clip = static_cast<int>(c);
-      return Status::Ok();
-    }
-  }
-  if (arg == "rest") {
-    *clip = -1;
-    return Status::Ok();
-  }
-  int index = -1;
-  const auto r = std::from_chars(arg.data(), arg.data() + arg.size(), index);
-  if (r.ec == std::errc() && r.ptr == arg.data() + arg.size() && index >= 0 &&
-      static_cast<std::size_t>(index) < asset.animations.size()) {
-    *clip = index;
-    return Status::Ok();
-  }
-  return Status::InvalidInput(input + ": no clip '" + arg + "' (" + ClipList(asset) + ")");
-}
-
 /// Every triangle of the posed primitives as one OBJ (points and lines are not written).
 Status WritePosedObj(const std::string& path, const CharacterPoser& poser,
                      const std::vector<PosedPrimitive>& posed, const std::string& header,

@@ -1,6 +1,8 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 #include "character_args.h"
 
+#include <charconv>
+
 #include "dermis/core/file_bytes.h"
 
 namespace dermis::cli {
@@ -35,6 +37,42 @@ void AddEvaluationOptions(CLI::App* cmd, const std::string& bound_help, std::str
                   "Displacement levels to evaluate (-1: all, 0: the domain surface)")
       ->check(CLI::Range(-1, 13))
       ->capture_default_str();
+}
+
+std::string ClipList(const Asset& asset) {
+  if (asset.animations.empty()) return "it has no clips";
+  std::string list = "clips:";
+  for (std::size_t c = 0; c < asset.animations.size(); ++c) {
+    list += (c ? ", " : " ") + std::to_string(c) + " '" + asset.animations[c].name + "'";
+  }
+  return list;
+}
+
+// The clip named by `arg` (a name first, then an index; "rest": the rest pose, -1).
+Status ResolveClip(const Asset& asset, const std::string& input, const std::string& arg,
+                   int* clip) {
+  if (arg.empty()) {
+    *clip = asset.animations.empty() ? -1 : 0;
+    return Status::Ok();
+  }
+  for (std::size_t c = 0; c < asset.animations.size(); ++c) {
+    if (asset.animations[c].name == arg) {
+      *clip = static_cast<int>(c);
+      return Status::Ok();
+    }
+  }
+  if (arg == "rest") {
+    *clip = -1;
+    return Status::Ok();
+  }
+  int index = -1;
+  const auto r = std::from_chars(arg.data(), arg.data() + arg.size(), index);
+  if (r.ec == std::errc() && r.ptr == arg.data() + arg.size() && index >= 0 &&
+      static_cast<std::size_t>(index) < asset.animations.size()) {
+    *clip = index;
+    return Status::Ok();
+  }
+  return Status::InvalidInput(input + ": no clip '" + arg + "' (" + ClipList(asset) + ")");
 }
 
 }  // namespace dermis::cli

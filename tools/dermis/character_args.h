@@ -30,4 +30,12 @@ CharacterPoseMode PoseModeFromName(const std::string& name);
 void AddEvaluationOptions(CLI::App* cmd, const std::string& bound_help, std::string* mode,
                           int* level, int* displacement_levels);
 
+/// "clips: 0 'walk', 1 'run'" (or "it has no clips"), for messages.
+std::string ClipList(const Asset& asset);
+
+/// The clip named by `arg` (a name first, then an index; "rest": the rest pose, -1; empty:
+/// clip 0, or the rest pose without clips). Errors name `input` and list the clips.
+Status ResolveClip(const Asset& asset, const std::string& input, const std::string& arg,
+                   int* clip);
+
 }  // namespace dermis::cli

@@ -24,6 +24,9 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run);
 /// Registers `animate`.
 void AddAnimateCommand(CLI::App* app, std::function<int()>* run);
 
+/// Registers `render`.
+void AddRenderCommand(CLI::App* app, std::function<int()>* run);
+
 /// Registers `inspect`.
 void AddInspectCommand(CLI::App* app, std::function<int()>* run);
 

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   dermis::cli::AddExportCommand(&app, &run);
   dermis::cli::AddFitCommand(&app, &run);
   dermis::cli::AddInspectCommand(&app, &run);
+  dermis::cli::AddRenderCommand(&app, &run);
   dermis::cli::AddTessellateCommand(&app, &run);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,424 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// dermis render: pictures of a fitted surface or a posed character, headless (tools/render):
+// one view, a turntable or the frames of a clip as a contact sheet, optionally coloured by the
+// fit error with a legend.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "character_args.h"
+#include "commands.h"
+#include "dermis/asset/asset_pose.h"
+#include "dermis/core/file_bytes.h"
+#include "dermis/offline/character_pose.h"
+#include "dermis/offline/point_input.h"
+#include "dermis/offline/skin_transfer.h"
+#include "dermis/offline/triangle_distance.h"
+#include "dermis/surface/tessellation.h"
+#include "render/raster.h"
+
+namespace dermis::cli {
+namespace {
+
+struct RenderArgs {
+  std::string input;
+  std::string output;
+  std::string clip;
+  double time = 0.0;
+  bool time_given = false;
+  std::string deformer = "sweep";
+  std::string mode = "lod";
+  int level = 6;
+  int displacement_levels = -1;
+  std::string heatmap = "none";
+  std::string reference;
+  std::string size = "800x800";
+  float azimuth = 30.0f, elevation = 15.0f;
+  int frames = 0;
+  int turntable = 0;
+  int columns = 0;
+  bool frame_files = false;
+  double fps = kDefaultPoseStepsPerSecond;
+  std::string caption;
+  bool force = false;
+  bool quiet = false;
+};
+
+int Fail(const Status& s) {
+  std::fprintf(stderr, "dermis render: error: %s\n", s.message().c_str());
+  return kExitFailure;
+}
+
+int Usage(const std::string& message) {
+  std::fprintf(stderr, "dermis render: error: %s\nRun 'dermis render --help' for usage.\n",
+               message.c_str());
+  return kExitUsage;
+}
+
+glm::vec3 F(const Vec3& v) { return glm::vec3(v); }
+
+// Distance from each vertex of `meshes` to the triangles of `reference` (model units).
+void DistanceMap(const std::vector<Vec3>& ref_positions,
+                 const std::vector<std::uint32_t>& ref_triangles,
+                 std::vector<render::Mesh>* meshes) {
+  TriangleDistanceTree tree;
+  tree.Build(ref_positions, ref_triangles);
+  for (render::Mesh& m : *meshes) {
+    m.scalar.resize(m.positions.size());
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+      m.scalar[i] = static_cast<float>(tree.Query(Vec3(m.positions[i])).distance);
+    }
+  }
+}
+
+// The colour range of an error map: 0 to the 99th percentile (so one outlier does not wash the
+// picture out; larger values show as the top colour).
+float ErrorRange(const std::vector<render::Mesh>& meshes) {
+  std::vector<float> all;
+  for (const render::Mesh& m : meshes) all.insert(all.end(), m.scalar.begin(), m.scalar.end());
+  if (all.empty()) return 1.0f;
+  const std::size_t k = std::min(all.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(all.size())));
+  std::nth_element(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(k), all.end());
+  return all[k] > 0.0f ? all[k] : 1.0f;
+}
+
+// A version-1 surface tessellated at `level`.
+Status SurfaceMesh(const RenderArgs& a, std::vector<render::Mesh>* out) {
+  DisplacedSurface surface;
+  Status s = ReadDsurf(a.input, &surface);
+  if (!s.ok()) return s;
+  std::vector<LocalPatch> patches(surface.rest_positions.size());
+  surface.domain->FitPatches(surface.rest_positions.data(), patches.data());
+  TessellationPattern pattern;
+  s = TessellationPattern::Build(surface.domain->topology(), a.level, &pattern);
+  if (!s.ok()) return s;
+  std::unique_ptr<TruncatedDisplacement> truncated;
+  const Displacement* disp = surface.displacement.get();
+  if (disp && a.displacement_levels >= 0) {
+    truncated = std::make_unique<TruncatedDisplacement>(surface.displacement.get(),
+                                                        a.displacement_levels);
+    disp = truncated.get();
+  }
+  const std::size_t n = pattern.samples.size();
+  std::vector<Vec3> x(n), nrm(n);
+  if (!EvaluateSamples(*surface.domain, patches.data(), disp, pattern.samples.data(), n, x.data(),
+                       nrm.data())) {
+    return Status::Internal(a.input + ": evaluation failed");
+  }
+  render::Mesh m;
+  for (std::size_t i = 0; i < n; ++i) {
+    m.positions.push_back(F(x[i]));
+    m.normals.push_back(F(nrm[i]));
+  }
+  m.triangles = pattern.triangles;
+  out->push_back(std::move(m));
+  return Status::Ok();
+}
+
+// The posed primitives of a character as render meshes (triangles only).
+std::vector<render::Mesh> PosedMeshes(const CharacterPoser& poser,
+                                      const std::vector<PosedPrimitive>& posed) {
+  std::vector<render::Mesh> meshes;
+  for (std::size_t d = 0; d < posed.size(); ++d) {
+    const DrawnPrimitive& dp = poser.drawn()[d];
+    const AssetPrimitive& prim = poser.asset()
+                                     .meshes[static_cast<std::size_t>(dp.mesh)]
+                                     .primitives[static_cast<std::size_t>(dp.primitive)];
+    render::Mesh m;
+    m.triangles = PrimitiveTriangles(prim);
+    for (const Vec3& p : posed[d].positions) m.positions.push_back(F(p));
+    for (const Vec3& n : posed[d].normals) m.normals.push_back(F(n));
+    meshes.push_back(std::move(m));
+  }
+  return meshes;
+}
+
+// The source character as a glTF viewer draws it at the rest pose (world space), as one
+// triangle soup: the reference of a character's error map.
+void SourceAtRest(const Asset& asset, std::vector<Vec3>* positions,
+                  std::vector<std::uint32_t>* triangles) {
+  AssetPose pose;
+  RestPose(asset, &pose);
+  std::vector<glm::dmat4> world;
+  ComputeWorldMatrices(asset, pose, &world);
+  for (std::size_t node = 0; node < asset.nodes.size(); ++node) {
+    const Index mesh = asset.nodes[node].mesh;
+    if (mesh < 0) continue;
+    for (const AssetPrimitive& prim : asset.meshes[static_cast<std::size_t>(mesh)].primitives) {
+      std::vector<glm::dvec3> p;
+      PosePrimitive(asset, pose, world, static_cast<Index>(node), prim, &p, nullptr);
+      const auto base = static_cast<std::uint32_t>(positions->size());
+      positions->insert(positions->end(), p.begin(), p.end());
+      for (std::uint32_t i : PrimitiveTriangles(prim)) triangles->push_back(base + i);
+    }
+  }
+}
+
+bool ParseSize(const std::string& s, int* w, int* h) {
+  const std::size_t x = s.find('x');
+  if (x == std::string::npos) return false;
+  try {
+    std::size_t used = 0;
+    *w = std::stoi(s.substr(0, x), &used);
+    if (used != x) return false;
+    *h = std::stoi(s.substr(x + 1), &used);
+    if (used != s.size() - x - 1) return false;
+  } catch (...) {
+    return false;
+  }
+  return *w >= 16 && *h >= 16 && *w <= 8192 && *h <= 8192;
+}
+
+int RunRender(const RenderArgs& a) {
+  int width = 0, height = 0;
+  if (!ParseSize(a.size, &width, &height)) {
+    return Usage("--size '" + a.size + "' must be WxH with 16 <= W, H <= 8192");
+  }
+  std::string ext = std::filesystem::path(a.output).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".png") return Usage(a.output + ": the output must be a .png file");
+  if (a.frames > 0 && a.turntable > 0) return Usage("--frames and --turntable exclude each other");
+  if (!a.force && std::filesystem::exists(a.output)) {
+    return Usage(a.output + " exists; pass --force to overwrite it");
+  }
+  const bool error_map = a.heatmap == "error";
+
+  std::string bytes;
+  {
+    const Status s = ReadFileBytes(a.input, "the input", &bytes);
+    if (!s.ok()) return Fail(s);
+  }
+  const std::uint32_t version = DsurfFileVersion(bytes);
+  if (version == 0) {
+    return Fail(Status::InvalidInput(a.input + ": not a .dsurf file (fit a mesh or character "
+                                                "with 'dermis fit' first)"));
+  }
+  render::View view;
+  view.width = width;
+  view.height = height;
+  view.azimuth = a.azimuth;
+  view.elevation = a.elevation;
+  view.caption = a.caption;
+  std::vector<render::Image> images;
+  std::vector<std::string> captions;
+
+  if (version == 1) {
+    // A plain surface: no pose; the error map needs the data it was fitted to.
+    if (a.frames > 0 || !a.clip.empty() || a.time_given) {
+      return Usage(a.input + " is a surface without a skeleton: --clip, --time and --frames apply "
+                             "to characters");
+    }
+    if (error_map && a.reference.empty()) {
+      return Usage("--heatmap error on a surface needs --reference MESH (the data it was fitted to)");
+    }
+    std::vector<render::Mesh> meshes;
+    Status s = SurfaceMesh(a, &meshes);
+    if (!s.ok()) return Fail(s);
+    if (error_map) {
+      PolygonMesh ref;
+      Index dropped = 0;
+      s = ReadFitInput(a.reference, &ref, &dropped);
+      if (!s.ok()) return Fail(s);
+      std::vector<std::uint32_t> tris;
+      for (Index f = 0; f < ref.num_faces(); ++f) {
+        const Index* fv = ref.face_vertices.data() + ref.face_offsets[f];
+        for (Index k = 1; k + 1 < ref.face_size(f); ++k) {
+          tris.insert(tris.end(), {static_cast<std::uint32_t>(fv[0]),
+                                   static_cast<std::uint32_t>(fv[k]),
+                                   static_cast<std::uint32_t>(fv[k + 1])});
+        }
+      }
+      if (tris.empty()) return Fail(Status::InvalidInput(a.reference + ": has no faces"));
+      DistanceMap(ref.positions, tris, &meshes);
+      view.show_legend = true;
+      view.scalar_max = ErrorRange(meshes);
+      view.legend = "distance to data";
+    }
+    const int views = std::max(1, a.turntable);
+    for (int k = 0; k < views; ++k) {
+      if (a.turntable > 0) view.azimuth = a.azimuth + 360.0f * static_cast<float>(k) / static_cast<float>(views);
+      images.push_back(render::Render(meshes, view));
+    }
+  } else {
+    Character ch;
+    Status s = ReadCharacterFile(a.input, &bytes, &ch);
+    if (!s.ok()) return Fail(s);
+    int clip = -1;
+    s = ResolveClip(ch.asset, a.input, a.clip, &clip);
+    if (!s.ok()) return Fail(s);
+    if (clip < 0 && (a.frames > 0 || (a.time_given && a.time != 0.0))) {
+      return Fail(Status::InvalidInput(a.input + ": --time and --frames apply to a clip (" +
+                                       ClipList(ch.asset) + ")"));
+    }
+    CharacterPoseOptions po;
+    po.deformer = DeformerFromName(a.deformer);
+    po.mode = PoseModeFromName(a.mode);
+    po.level = a.level;
+    po.displacement_levels = a.displacement_levels;
+    po.threads = 0;
+    CharacterPoser poser;
+    s = CharacterPoser::Build(ch, po, &poser);
+    if (!s.ok()) return Fail(s);
+    // The times to draw.
+    std::vector<double> times;
+    if (a.frames > 0) {
+      const double duration = ch.asset.animations[static_cast<std::size_t>(clip)].Duration();
+      for (int k = 0; k < a.frames; ++k) {
+        times.push_back(a.frames == 1 ? 0.0 : duration * k / (a.frames - 1));
+      }
+    } else {
+      times.push_back(a.time);
+    }
+    std::vector<float> error;  // per vertex of the drawn primitives, concatenated
+    if (error_map) {
+      std::vector<PosedPrimitive> rest;
+      s = poser.PoseClip(-1, 0.0, a.fps, &rest);
+      if (!s.ok()) return Fail(s);
+      std::vector<render::Mesh> rest_meshes = PosedMeshes(poser, rest);
+      std::vector<Vec3> ref;
+      std::vector<std::uint32_t> tris;
+      SourceAtRest(ch.asset, &ref, &tris);
+      DistanceMap(ref, tris, &rest_meshes);
+      for (const render::Mesh& m : rest_meshes) error.insert(error.end(), m.scalar.begin(), m.scalar.end());
+      view.show_legend = true;
+      view.scalar_max = ErrorRange(rest_meshes);
+      view.legend = "distance to source";
+    }
+    std::vector<std::vector<render::Mesh>> frames;
+    render::Box box;
+    for (double t : times) {
+      std::vector<PosedPrimitive> posed;
+      s = poser.PoseClip(clip, t, a.fps, &posed);
+      if (!s.ok()) return Fail(s);
+      std::vector<render::Mesh> meshes = PosedMeshes(poser, posed);
+      std::size_t at = 0;
+      for (render::Mesh& m : meshes) {
+        if (error_map) {
+          m.scalar.assign(error.begin() + static_cast<std::ptrdiff_t>(at),
+                          error.begin() + static_cast<std::ptrdiff_t>(at + m.positions.size()));
+        }
+        at += m.positions.size();
+      }
+      const render::Box b = render::Bounds(meshes);
+      if (!b.empty()) {
+        box.Add(b.lo);
+        box.Add(b.hi);
+      }
+      frames.push_back(std::move(meshes));
+      char cap[96];
+      std::snprintf(cap, sizeof(cap), "%s t=%.2fs", a.deformer.c_str(), t);
+      captions.push_back(clip >= 0 ? cap : a.deformer + " rest");
+    }
+    view.frame = box;  // one scale for every frame
+    const int views = std::max(1, a.turntable);
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+      for (int k = 0; k < views; ++k) {
+        if (a.turntable > 0) view.azimuth = a.azimuth + 360.0f * static_cast<float>(k) / static_cast<float>(views);
+        if (a.caption.empty() && frames.size() > 1) view.caption = captions[f];
+        images.push_back(render::Render(frames[f], view));
+      }
+    }
+  }
+
+  const std::filesystem::path parent = std::filesystem::path(a.output).parent_path();
+  if (!parent.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(parent, ec);
+  }
+  if (a.frame_files && images.size() > 1) {
+    const std::string stem = (parent / std::filesystem::path(a.output).stem()).string();
+    for (std::size_t k = 0; k < images.size(); ++k) {
+      char suffix[32];
+      std::snprintf(suffix, sizeof(suffix), "_%03zu.png", k);
+      const Status s = render::WritePng(stem + suffix, images[k]);
+      if (!s.ok()) return Fail(s);
+    }
+  }
+  const int columns =
+      a.columns > 0 ? a.columns
+                    : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(images.size()))));
+  const render::Image out = images.size() == 1 ? images[0] : render::ContactSheet(images, columns);
+  const Status s = render::WritePng(a.output, out);
+  if (!s.ok()) return Fail(s);
+  if (!a.quiet) {
+    std::fprintf(stderr, "dermis render: %zu view%s, %dx%d%s\nwrote %s\n", images.size(),
+                 images.size() == 1 ? "" : "s", out.width, out.height,
+                 view.show_legend ? (", error map 0.." + std::to_string(view.scalar_max) +
+                                     " model units").c_str()
+                                  : "",
+                 a.output.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "render",
+      "Render a fitted surface or a posed character (.dsurf) to PNG, headless: one view, a "
+      "turntable, or the frames of a clip as a contact sheet, optionally coloured by the fit "
+      "error.");
+  cmd->add_option("INPUT", args->input, "Fitted surface or character (.dsurf)")->required();
+  cmd->add_option("-o,--output", args->output, "Picture (.png)")->required();
+  cmd->add_option("--clip", args->clip, "Clip name or index (default 0; 'rest': the rest pose)");
+  cmd->add_option("--time", args->time, "Seconds from the clip's start")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  cmd->add_option("--frames", args->frames,
+                  "Draw N frames evenly over the clip as a contact sheet")
+      ->check(CLI::Range(1, 256));
+  cmd->add_flag("--frame-files", args->frame_files,
+                "With --frames or --turntable: also write OUTPUT_000.png, OUTPUT_001.png, ...");
+  cmd->add_option("--turntable", args->turntable, "Draw N views around the vertical axis")
+      ->check(CLI::Range(1, 64));
+  cmd->add_option("--columns", args->columns, "Columns of the contact sheet (default: square)")
+      ->check(CLI::Range(1, 64));
+  cmd->add_option("--deformer", args->deformer, "Deformer of the control vertices")
+      ->check(CLI::IsMember(kDeformerNames))
+      ->capture_default_str();
+  cmd->add_option("--mode", args->mode,
+                  "Characters: lod (the surface tessellated at --level) or bound (the original "
+                  "vertices on the surface)")
+      ->check(CLI::IsMember({"lod", "bound"}))
+      ->capture_default_str();
+  cmd->add_option("--level", args->level, "Segments per control-face edge")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_option("--displacement-levels", args->displacement_levels,
+                  "Displacement levels (-1: all, 0: the domain surface)")
+      ->check(CLI::Range(-1, 16))
+      ->capture_default_str();
+  cmd->add_option("--heatmap", args->heatmap,
+                  "Colour by: none, or error (distance to the source mesh at the rest pose for a "
+                  "character, to --reference for a surface; 0..99th percentile, legend)")
+      ->check(CLI::IsMember({"none", "error"}))
+      ->capture_default_str();
+  cmd->add_option("--reference", args->reference,
+                  "The data a surface was fitted to (.obj or .ply), for --heatmap error");
+  cmd->add_option("--size", args->size, "Picture size WxH (pixels, per view)")
+      ->capture_default_str();
+  cmd->add_option("--azimuth", args->azimuth, "Camera azimuth about +y (degrees)")
+      ->capture_default_str();
+  cmd->add_option("--elevation", args->elevation, "Camera elevation (degrees)")
+      ->check(CLI::Range(-89.0, 89.0))
+      ->capture_default_str();
+  cmd->add_option("--fps", args->fps, "Steps per second of the clip replay (the sweep's history)")
+      ->check(CLI::Range(0.001, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--caption", args->caption, "Text at the top left");
+  cmd->add_flag("-f,--force", args->force, "Overwrite OUTPUT if it exists");
+  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+  CLI::Option* time = cmd->get_option("--time");
+  cmd->callback([run, args, time]() {
+    args->time_given = time->count() > 0;
+    *run = [args]() { return RunRender(*args); };
+  });
+}
+
+}  // namespace dermis::cli
