@@ -115,6 +115,52 @@ foreach(f garbage.dsurf garbage2.dsurf bad.glb bad.obj)
   endif()
 endforeach()
 
+# dermis render: PNG pictures of a surface (with an error map against its data) and of the
+# character's clip as a contact sheet; no overwrite without --force; bad input exits 1.
+function(expect_png path min_bytes)
+  if(NOT EXISTS ${path})
+    message(FATAL_ERROR "${path} was not written")
+  endif()
+  file(READ ${path} head LIMIT 8 HEX)
+  if(NOT head STREQUAL "89504e470d0a1a0a")
+    message(FATAL_ERROR "${path} is not a PNG (starts ${head})")
+  endif()
+  file(SIZE ${path} size)
+  if(size LESS ${min_bytes})
+    message(FATAL_ERROR "${path} is only ${size} bytes")
+  endif()
+endfunction()
+expect_run(0 "1 view, 200x160" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/torus.png
+           --size 200x160)
+expect_png(${WORK}/pic/torus.png 2000)
+expect_run(0 "error map 0\\.\\." ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/err.png
+           --size 200x160 --heatmap error --reference ${WORK}/dense_torus.obj)
+expect_png(${WORK}/pic/err.png 2000)
+expect_run(0 "" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/turn.png
+           --size 100x100 --turntable 4 --frame-files -q)
+expect_png(${WORK}/pic/turn.png 2000)
+expect_png(${WORK}/pic/turn_003.png 500)
+file(SHA256 ${WORK}/pic/torus.png before)
+expect_run(2 "exists; pass --force" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/torus.png)
+file(SHA256 ${WORK}/pic/torus.png after)
+if(NOT before STREQUAL after)
+  message(FATAL_ERROR "render overwrote a file without --force")
+endif()
+expect_run(0 "" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/torus.png --force -q
+           --size 64x64)
+expect_run(2 "needs --reference" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/x.png
+           --heatmap error)
+expect_run(2 "\\.png" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/x.jpg)
+expect_run(2 "WxH" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/x.png --size 12)
+expect_run(2 "skeleton" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/x.png --frames 3)
+expect_run(1 "missing\\.dsurf" ${DERMIS} render ${WORK}/missing.dsurf -o ${WORK}/pic/x.png)
+expect_run(1 "bad\\.dsurf" ${DERMIS} render ${WORK}/bad.dsurf -o ${WORK}/pic/x.png)
+expect_run(1 "dense_torus\\.obj: not a \\.dsurf" ${DERMIS} render ${WORK}/dense_torus.obj
+           -o ${WORK}/pic/x.png)
+if(EXISTS ${WORK}/pic/x.png OR EXISTS ${WORK}/pic/x.jpg)
+  message(FATAL_ERROR "a failed render left a picture behind")
+endif()
+
 set(skin ${DATA}/gltf/SimpleSkin.gltf)
 if(NOT EXISTS ${skin})
   message(STATUS "skipped the character part: ${skin} is absent (../shared/data)")
@@ -240,3 +286,9 @@ file(READ ${ch}/keep.obj kept)
 if(NOT kept STREQUAL "old")
   message(FATAL_ERROR "a failed animate touched an existing output")
 endif()
+
+# dermis render on the character: a clip contact sheet with the error map.
+expect_run(0 "4 views" ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/sheet.png --frames 4
+           --size 120x120 --heatmap error)
+expect_png(${ch}/sheet.png 2000)
+expect_run(1 "no clip" ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/x.png --clip walk)
