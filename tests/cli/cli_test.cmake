@@ -161,6 +161,15 @@ if(EXISTS ${WORK}/pic/x.png OR EXISTS ${WORK}/pic/x.jpg)
   message(FATAL_ERROR "a failed render left a picture behind")
 endif()
 
+# dermis validate: .dsurf and glTF files; bad or missing files exit 1.
+expect_run(0 "torus\\.dsurf: valid" ${DERMIS} validate ${WORK}/fit/torus.dsurf)
+expect_run(0 "\"valid\": true" ${DERMIS} validate ${WORK}/fit/torus.dsurf --json)
+expect_run(1 "bad\\.dsurf" ${DERMIS} validate ${WORK}/bad.dsurf)
+file(WRITE ${WORK}/garbage_v.glb "glTF but not really")
+expect_run(1 "INVALID" ${DERMIS} validate ${WORK}/garbage_v.glb)
+expect_run(1 "missing\\.glb" ${DERMIS} validate ${WORK}/missing.glb)
+expect_run(2 "" ${DERMIS} validate)
+
 set(skin ${DATA}/gltf/SimpleSkin.gltf)
 if(NOT EXISTS ${skin})
   message(STATUS "skipped the character part: ${skin} is absent (../shared/data)")
@@ -287,8 +296,10 @@ if(NOT kept STREQUAL "old")
   message(FATAL_ERROR "a failed animate touched an existing output")
 endif()
 
-# dermis render on the character: a clip contact sheet with the error map.
-expect_run(0 "4 views" ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/sheet.png --frames 4
-           --size 120x120 --heatmap error)
+expect_run(0 "bound\\.glb: valid" ${DERMIS} validate ${ch}/bound.glb)
+
+# dermis render on the character: a clip contact sheet with the error map and LBS below.
+expect_run(0 "8 views" ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/sheet.png --frames 4
+           --size 120x120 --heatmap error --compare lbs)
 expect_png(${ch}/sheet.png 2000)
 expect_run(1 "no clip" ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/x.png --clip walk)

@@ -35,7 +35,6 @@ std::string ClipList(const Asset& asset);
 
 /// The clip named by `arg` (a name first, then an index; "rest": the rest pose, -1; empty:
 /// clip 0, or the rest pose without clips). Errors name `input` and list the clips.
-Status ResolveClip(const Asset& asset, const std::string& input, const std::string& arg,
-                   int* clip);
+Status ResolveClip(const Asset& asset, const std::string& input, const std::string& arg, int* clip);
 
 }  // namespace dermis::cli

@@ -27,6 +27,9 @@ void AddAnimateCommand(CLI::App* app, std::function<int()>* run);
 /// Registers `render`.
 void AddRenderCommand(CLI::App* app, std::function<int()>* run);
 
+/// Registers `validate`.
+void AddValidateCommand(CLI::App* app, std::function<int()>* run);
+
 /// Registers `inspect`.
 void AddInspectCommand(CLI::App* app, std::function<int()>* run);
 

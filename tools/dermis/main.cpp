@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   dermis::cli::AddFitCommand(&app, &run);
   dermis::cli::AddInspectCommand(&app, &run);
   dermis::cli::AddRenderCommand(&app, &run);
+  dermis::cli::AddValidateCommand(&app, &run);
   dermis::cli::AddTessellateCommand(&app, &run);
   try {
     app.parse(argc, argv);

@@ -31,6 +31,7 @@ struct RenderArgs {
   double time = 0.0;
   bool time_given = false;
   std::string deformer = "sweep";
+  std::string compare;  // a second deformer drawn as a second row
   std::string mode = "lod";
   int level = 6;
   int displacement_levels = -1;
@@ -81,7 +82,8 @@ float ErrorRange(const std::vector<render::Mesh>& meshes) {
   std::vector<float> all;
   for (const render::Mesh& m : meshes) all.insert(all.end(), m.scalar.begin(), m.scalar.end());
   if (all.empty()) return 1.0f;
-  const std::size_t k = std::min(all.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(all.size())));
+  const std::size_t k =
+      std::min(all.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(all.size())));
   std::nth_element(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(k), all.end());
   return all[k] > 0.0f ? all[k] : 1.0f;
 }
@@ -99,8 +101,8 @@ Status SurfaceMesh(const RenderArgs& a, std::vector<render::Mesh>* out) {
   std::unique_ptr<TruncatedDisplacement> truncated;
   const Displacement* disp = surface.displacement.get();
   if (disp && a.displacement_levels >= 0) {
-    truncated = std::make_unique<TruncatedDisplacement>(surface.displacement.get(),
-                                                        a.displacement_levels);
+    truncated =
+        std::make_unique<TruncatedDisplacement>(surface.displacement.get(), a.displacement_levels);
     disp = truncated.get();
   }
   const std::size_t n = pattern.samples.size();
@@ -179,9 +181,12 @@ int RunRender(const RenderArgs& a) {
     return Usage("--size '" + a.size + "' must be WxH with 16 <= W, H <= 8192");
   }
   std::string ext = std::filesystem::path(a.output).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext != ".png") return Usage(a.output + ": the output must be a .png file");
   if (a.frames > 0 && a.turntable > 0) return Usage("--frames and --turntable exclude each other");
+  if (!a.compare.empty() && a.turntable > 0)
+    return Usage("--compare and --turntable exclude each other");
   if (!a.force && std::filesystem::exists(a.output)) {
     return Usage(a.output + " exists; pass --force to overwrite it");
   }
@@ -195,7 +200,7 @@ int RunRender(const RenderArgs& a) {
   const std::uint32_t version = DsurfFileVersion(bytes);
   if (version == 0) {
     return Fail(Status::InvalidInput(a.input + ": not a .dsurf file (fit a mesh or character "
-                                                "with 'dermis fit' first)"));
+                                               "with 'dermis fit' first)"));
   }
   render::View view;
   view.width = width;
@@ -208,12 +213,14 @@ int RunRender(const RenderArgs& a) {
 
   if (version == 1) {
     // A plain surface: no pose; the error map needs the data it was fitted to.
-    if (a.frames > 0 || !a.clip.empty() || a.time_given) {
-      return Usage(a.input + " is a surface without a skeleton: --clip, --time and --frames apply "
-                             "to characters");
+    if (a.frames > 0 || !a.clip.empty() || a.time_given || !a.compare.empty()) {
+      return Usage(a.input +
+                   " is a surface without a skeleton: --clip, --time, --frames "
+                   "and --compare apply to characters");
     }
     if (error_map && a.reference.empty()) {
-      return Usage("--heatmap error on a surface needs --reference MESH (the data it was fitted to)");
+      return Usage(
+          "--heatmap error on a surface needs --reference MESH (the data it was fitted to)");
     }
     std::vector<render::Mesh> meshes;
     Status s = SurfaceMesh(a, &meshes);
@@ -227,9 +234,9 @@ int RunRender(const RenderArgs& a) {
       for (Index f = 0; f < ref.num_faces(); ++f) {
         const Index* fv = ref.face_vertices.data() + ref.face_offsets[f];
         for (Index k = 1; k + 1 < ref.face_size(f); ++k) {
-          tris.insert(tris.end(), {static_cast<std::uint32_t>(fv[0]),
-                                   static_cast<std::uint32_t>(fv[k]),
-                                   static_cast<std::uint32_t>(fv[k + 1])});
+          tris.insert(tris.end(),
+                      {static_cast<std::uint32_t>(fv[0]), static_cast<std::uint32_t>(fv[k]),
+                       static_cast<std::uint32_t>(fv[k + 1])});
         }
       }
       if (tris.empty()) return Fail(Status::InvalidInput(a.reference + ": has no faces"));
@@ -240,7 +247,8 @@ int RunRender(const RenderArgs& a) {
     }
     const int views = std::max(1, a.turntable);
     for (int k = 0; k < views; ++k) {
-      if (a.turntable > 0) view.azimuth = a.azimuth + 360.0f * static_cast<float>(k) / static_cast<float>(views);
+      if (a.turntable > 0)
+        view.azimuth = a.azimuth + 360.0f * static_cast<float>(k) / static_cast<float>(views);
       images.push_back(render::Render(meshes, view));
     }
   } else {
@@ -254,15 +262,21 @@ int RunRender(const RenderArgs& a) {
       return Fail(Status::InvalidInput(a.input + ": --time and --frames apply to a clip (" +
                                        ClipList(ch.asset) + ")"));
     }
-    CharacterPoseOptions po;
-    po.deformer = DeformerFromName(a.deformer);
-    po.mode = PoseModeFromName(a.mode);
-    po.level = a.level;
-    po.displacement_levels = a.displacement_levels;
-    po.threads = 0;
-    CharacterPoser poser;
-    s = CharacterPoser::Build(ch, po, &poser);
-    if (!s.ok()) return Fail(s);
+    // One poser per deformer drawn: the primary one, and --compare's as a second row.
+    std::vector<std::string> deformers = {a.deformer};
+    if (!a.compare.empty()) deformers.push_back(a.compare);
+    std::vector<CharacterPoser> posers(deformers.size());
+    for (std::size_t k = 0; k < deformers.size(); ++k) {
+      CharacterPoseOptions po;
+      po.deformer = DeformerFromName(deformers[k]);
+      po.mode = PoseModeFromName(a.mode);
+      po.level = a.level;
+      po.displacement_levels = a.displacement_levels;
+      po.threads = 0;
+      s = CharacterPoser::Build(ch, po, &posers[k]);
+      if (!s.ok()) return Fail(s);
+    }
+    CharacterPoser& poser = posers[0];
     // The times to draw.
     std::vector<double> times;
     if (a.frames > 0) {
@@ -283,42 +297,48 @@ int RunRender(const RenderArgs& a) {
       std::vector<std::uint32_t> tris;
       SourceAtRest(ch.asset, &ref, &tris);
       DistanceMap(ref, tris, &rest_meshes);
-      for (const render::Mesh& m : rest_meshes) error.insert(error.end(), m.scalar.begin(), m.scalar.end());
+      for (const render::Mesh& m : rest_meshes)
+        error.insert(error.end(), m.scalar.begin(), m.scalar.end());
       view.show_legend = true;
       view.scalar_max = ErrorRange(rest_meshes);
       view.legend = "distance to source";
     }
     std::vector<std::vector<render::Mesh>> frames;
     render::Box box;
-    for (double t : times) {
-      std::vector<PosedPrimitive> posed;
-      s = poser.PoseClip(clip, t, a.fps, &posed);
-      if (!s.ok()) return Fail(s);
-      std::vector<render::Mesh> meshes = PosedMeshes(poser, posed);
-      std::size_t at = 0;
-      for (render::Mesh& m : meshes) {
-        if (error_map) {
-          m.scalar.assign(error.begin() + static_cast<std::ptrdiff_t>(at),
-                          error.begin() + static_cast<std::ptrdiff_t>(at + m.positions.size()));
+    for (std::size_t k = 0; k < posers.size(); ++k) {
+      for (double t : times) {
+        std::vector<PosedPrimitive> posed;
+        s = posers[k].PoseClip(clip, t, a.fps, &posed);
+        if (!s.ok()) return Fail(s);
+        std::vector<render::Mesh> meshes = PosedMeshes(posers[k], posed);
+        std::size_t at = 0;
+        for (render::Mesh& m : meshes) {
+          if (error_map) {
+            m.scalar.assign(error.begin() + static_cast<std::ptrdiff_t>(at),
+                            error.begin() + static_cast<std::ptrdiff_t>(at + m.positions.size()));
+          }
+          at += m.positions.size();
         }
-        at += m.positions.size();
+        const render::Box b = render::Bounds(meshes);
+        if (!b.empty()) {
+          box.Add(b.lo);
+          box.Add(b.hi);
+        }
+        frames.push_back(std::move(meshes));
+        char cap[96];
+        std::snprintf(cap, sizeof(cap), "%s t=%.2fs", deformers[k].c_str(), t);
+        captions.push_back(clip >= 0 ? std::string(cap) : deformers[k] + " rest");
       }
-      const render::Box b = render::Bounds(meshes);
-      if (!b.empty()) {
-        box.Add(b.lo);
-        box.Add(b.hi);
-      }
-      frames.push_back(std::move(meshes));
-      char cap[96];
-      std::snprintf(cap, sizeof(cap), "%s t=%.2fs", a.deformer.c_str(), t);
-      captions.push_back(clip >= 0 ? cap : a.deformer + " rest");
     }
     view.frame = box;  // one scale for every frame
     const int views = std::max(1, a.turntable);
     for (std::size_t f = 0; f < frames.size(); ++f) {
       for (int k = 0; k < views; ++k) {
-        if (a.turntable > 0) view.azimuth = a.azimuth + 360.0f * static_cast<float>(k) / static_cast<float>(views);
-        if (a.caption.empty() && frames.size() > 1) view.caption = captions[f];
+        if (a.turntable > 0)
+          view.azimuth = a.azimuth + 360.0f * static_cast<float>(k) / static_cast<float>(views);
+        if (a.caption.empty() && (frames.size() > 1 || !a.compare.empty())) {
+          view.caption = captions[f];
+        }
         images.push_back(render::Render(frames[f], view));
       }
     }
@@ -338,19 +358,23 @@ int RunRender(const RenderArgs& a) {
       if (!s.ok()) return Fail(s);
     }
   }
+  // Default layout: one row per deformer with --compare, else about square.
   const int columns =
       a.columns > 0 ? a.columns
-                    : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(images.size()))));
+      : !a.compare.empty()
+          ? static_cast<int>(images.size() / 2)
+          : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(images.size()))));
   const render::Image out = images.size() == 1 ? images[0] : render::ContactSheet(images, columns);
   const Status s = render::WritePng(a.output, out);
   if (!s.ok()) return Fail(s);
   if (!a.quiet) {
-    std::fprintf(stderr, "dermis render: %zu view%s, %dx%d%s\nwrote %s\n", images.size(),
-                 images.size() == 1 ? "" : "s", out.width, out.height,
-                 view.show_legend ? (", error map 0.." + std::to_string(view.scalar_max) +
-                                     " model units").c_str()
-                                  : "",
-                 a.output.c_str());
+    std::fprintf(
+        stderr, "dermis render: %zu view%s, %dx%d%s\nwrote %s\n", images.size(),
+        images.size() == 1 ? "" : "s", out.width, out.height,
+        view.show_legend
+            ? (", error map 0.." + std::to_string(view.scalar_max) + " model units").c_str()
+            : "",
+        a.output.c_str());
   }
   return kExitOk;
 }
@@ -370,8 +394,7 @@ void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--time", args->time, "Seconds from the clip's start")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
-  cmd->add_option("--frames", args->frames,
-                  "Draw N frames evenly over the clip as a contact sheet")
+  cmd->add_option("--frames", args->frames, "Draw N frames evenly over the clip as a contact sheet")
       ->check(CLI::Range(1, 256));
   cmd->add_flag("--frame-files", args->frame_files,
                 "With --frames or --turntable: also write OUTPUT_000.png, OUTPUT_001.png, ...");
@@ -382,6 +405,9 @@ void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--deformer", args->deformer, "Deformer of the control vertices")
       ->check(CLI::IsMember(kDeformerNames))
       ->capture_default_str();
+  cmd->add_option("--compare", args->compare,
+                  "Characters: draw the same frames with this deformer too, as a second row")
+      ->check(CLI::IsMember(kDeformerNames));
   cmd->add_option("--mode", args->mode,
                   "Characters: lod (the surface tessellated at --level) or bound (the original "
                   "vertices on the surface)")

@@ -57,8 +57,8 @@ glm::vec3 Shade(glm::vec3 n, const glm::vec3& base, const Frame& f) {
   const glm::vec3 key = glm::normalize(-0.45f * f.right + 0.6f * f.up + 0.66f * f.back);
   const glm::vec3 fill = glm::normalize(0.6f * f.right - 0.2f * f.up + 0.77f * f.back);
   const glm::vec3 half = glm::normalize(key + f.back);
-  const float diffuse = 0.62f * std::max(0.0f, glm::dot(n, key)) +
-                        0.22f * std::max(0.0f, glm::dot(n, fill));
+  const float diffuse =
+      0.62f * std::max(0.0f, glm::dot(n, key)) + 0.22f * std::max(0.0f, glm::dot(n, fill));
   const float spec = 0.18f * std::pow(std::max(0.0f, glm::dot(n, half)), 48.0f);
   return glm::clamp(base * (0.22f + diffuse) + glm::vec3(spec), 0.0f, 1.0f);
 }
@@ -117,7 +117,7 @@ std::string Format(float v) {
 }
 
 void DrawLegend(Image* img, const View& view) {
-  const int s = std::max(1, img->height / 400);
+  const int s = std::max(1, img->height / 240);
   const int bar_w = 14 * s, bar_h = img->height / 2;
   const int label_w = 8 * 6 * s;
   const int x0 = img->width - bar_w - label_w - 12 * s;
@@ -195,8 +195,8 @@ Image Render(const std::vector<Mesh>& meshes, const View& view) {
       const glm::vec3 a = sp[ia], b = sp[ib], c = sp[ic];
       const float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
       if (!(std::fabs(area) > 1e-12f) || !std::isfinite(area)) continue;
-      const glm::vec3 face_n = glm::cross(m.positions[ib] - m.positions[ia],
-                                          m.positions[ic] - m.positions[ia]);
+      const glm::vec3 face_n =
+          glm::cross(m.positions[ib] - m.positions[ia], m.positions[ic] - m.positions[ia]);
       const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))));
       const int x1 = std::min(w - 1, static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))));
       const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
@@ -219,9 +219,8 @@ Image Render(const std::vector<Mesh>& meshes, const View& view) {
             const float s = w0 * m.scalar[ia] + w1 * m.scalar[ib] + w2 * m.scalar[ic];
             base = ColorMap(range > 0.0f ? (s - view.scalar_min) / range : 0.0f);
           }
-          const glm::vec3 n = has_normals ? w0 * m.normals[ia] + w1 * m.normals[ib] +
-                                                w2 * m.normals[ic]
-                                          : face_n;
+          const glm::vec3 n =
+              has_normals ? w0 * m.normals[ia] + w1 * m.normals[ib] + w2 * m.normals[ic] : face_n;
           color[k] = Shade(n, base, f);
         }
       }
@@ -248,7 +247,7 @@ Image Render(const std::vector<Mesh>& meshes, const View& view) {
   }
   if (view.show_legend) DrawLegend(&img, view);
   if (!view.caption.empty()) {
-    const int s = std::max(1, img.height / 400);
+    const int s = std::max(1, img.height / 240);
     DrawText(&img, 8 * s, 8 * s, view.caption, s, glm::vec3(0.15f));
   }
   return img;
