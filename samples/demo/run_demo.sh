@@ -33,9 +33,9 @@ dermis="$bin/dermis"
 mkdir -p "$out/frames"
 
 "$bin/sample_make_creature" "$out/creature.glb" "${small[@]}"
-"$dermis" fit "$out/creature.glb" -o "$out/creature.dsurf" --report "$out/creature_fit.json" -q
-"$dermis" export "$out/creature.dsurf" -o "$out/creature_skinned.glb" -q
-"$dermis" export "$out/creature.dsurf" -o "$out/creature_sweep.glb" --bake-sweep --fps 15 -q
+"$dermis" fit "$out/creature.glb" -o "$out/creature.dsurf" --report "$out/creature_fit.json" -q --force
+"$dermis" export "$out/creature.dsurf" -o "$out/creature_skinned.glb" -q --force
+"$dermis" export "$out/creature.dsurf" -o "$out/creature_sweep.glb" --bake-sweep --fps 15 -q --force
 for deformer in sweep lbs; do
   "$dermis" render "$out/creature.dsurf" -o "$out/frames/$deformer.png" --deformer "$deformer" \
     --frames "$frames" --columns "$frames" --frame-files --size "$size" --azimuth 0 \

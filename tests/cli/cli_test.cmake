@@ -57,6 +57,16 @@ if(leftovers)
   message(FATAL_ERROR "files left behind by failed runs: ${leftovers}")
 endif()
 
+# Existing outputs are never overwritten without --force (exit 2, the file untouched).
+file(WRITE ${WORK}/existing.obj "old")
+expect_run(2 "existing\\.obj exists; pass --force" ${DERMIS} tessellate --builtin cube
+           -o ${WORK}/existing.obj)
+file(READ ${WORK}/existing.obj kept)
+if(NOT kept STREQUAL "old")
+  message(FATAL_ERROR "tessellate overwrote a file without --force")
+endif()
+expect_run(0 "" ${DERMIS} tessellate --builtin cube -o ${WORK}/existing.obj --force -q)
+
 # Usage errors: exit 2 with a hint.
 expect_run(2 "\\-\\-help' for usage" ${DERMIS} tessellate ${WORK}/quad.obj)
 expect_run(2 "\\-\\-help' for usage" ${DERMIS} tessellate ${WORK}/quad.obj -o ${WORK}/x.obj --level 0)
@@ -215,7 +225,7 @@ if(EXISTS ${ch}/truncated.dsurf)
 endif()
 # An export over an existing file replaces it only when it succeeds.
 file(WRITE ${ch}/keep.glb "old")
-expect_run(1 "bad\\.dsurf" ${DERMIS} export ${WORK}/bad.dsurf -o ${ch}/keep.glb)
+expect_run(1 "bad\\.dsurf" ${DERMIS} export ${WORK}/bad.dsurf -o ${ch}/keep.glb --force)
 file(READ ${ch}/keep.glb kept)
 if(NOT kept STREQUAL "old")
   message(FATAL_ERROR "a failed export touched an existing output")
@@ -290,7 +300,7 @@ foreach(f bad_clip.obj bad_clip.glb bad_time.obj bad_missing.obj bad_input.obj b
   endif()
 endforeach()
 file(WRITE ${ch}/keep.obj "old")
-expect_run(1 "no clip" ${DERMIS} animate ${ch}/skin.dsurf --clip walk -o ${ch}/keep.obj)
+expect_run(1 "no clip" ${DERMIS} animate ${ch}/skin.dsurf --clip walk -o ${ch}/keep.obj --force)
 file(READ ${ch}/keep.obj kept)
 if(NOT kept STREQUAL "old")
   message(FATAL_ERROR "a failed animate touched an existing output")

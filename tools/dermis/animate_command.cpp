@@ -204,9 +204,13 @@ void AddAnimateCommand(CLI::App* app, std::function<int()>* run) {
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   CLI::Option* time = cmd->get_option("--time");
-  cmd->callback([run, args, time]() {
+  auto force = AddForceFlag(cmd);
+  cmd->callback([run, args, time, force]() {
     args->time_given = time->count() > 0;
-    *run = [args]() { return RunAnimate(*args); };
+    *run = [args, force]() {
+      const int rc = CheckOverwrite("animate", {args->output}, *force);
+      return rc != kExitOk ? rc : RunAnimate(*args);
+    };
   });
 }
 

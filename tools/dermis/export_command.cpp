@@ -176,7 +176,13 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
-  cmd->callback([run, args]() { *run = [args]() { return RunExport(*args); }; });
+  auto force = AddForceFlag(cmd);
+  cmd->callback([run, args, force]() {
+    *run = [args, force]() {
+      const int rc = CheckOverwrite("export", {args->output}, *force);
+      return rc != kExitOk ? rc : RunExport(*args);
+    };
+  });
 }
 
 }  // namespace dermis::cli

@@ -282,7 +282,13 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
-  cmd->callback([run, args]() { *run = [args]() { return RunFit(*args); }; });
+  auto force = AddForceFlag(cmd);
+  cmd->callback([run, args, force]() {
+    *run = [args, force]() {
+      const int rc = CheckOverwrite("fit", {args->output, args->report}, *force);
+      return rc != kExitOk ? rc : RunFit(*args);
+    };
+  });
 }
 
 }  // namespace dermis::cli

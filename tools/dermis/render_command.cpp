@@ -187,9 +187,7 @@ int RunRender(const RenderArgs& a) {
   if (a.frames > 0 && a.turntable > 0) return Usage("--frames and --turntable exclude each other");
   if (!a.compare.empty() && a.turntable > 0)
     return Usage("--compare and --turntable exclude each other");
-  if (!a.force && std::filesystem::exists(a.output)) {
-    return Usage(a.output + " exists; pass --force to overwrite it");
-  }
+  if (const int rc = CheckOverwrite("render", {a.output}, a.force); rc != kExitOk) return rc;
   const bool error_map = a.heatmap == "error";
 
   std::string bytes;
@@ -438,7 +436,7 @@ void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
       ->check(CLI::Range(0.001, 1000.0))
       ->capture_default_str();
   cmd->add_option("--caption", args->caption, "Text at the top left");
-  cmd->add_flag("-f,--force", args->force, "Overwrite OUTPUT if it exists");
+  cmd->add_flag("-f,--force", args->force, "Overwrite output files that exist");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   CLI::Option* time = cmd->get_option("--time");
   cmd->callback([run, args, time]() {

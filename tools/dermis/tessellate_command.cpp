@@ -166,7 +166,13 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
                   "For a .dsurf: displacement levels to use (0: domain surface; default all)")
       ->check(CLI::Range(0, kMaxBsplineLevels));
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
-  cmd->callback([run, args]() { *run = [args]() { return RunTessellate(*args); }; });
+  auto force = AddForceFlag(cmd);
+  cmd->callback([run, args, force]() {
+    *run = [args, force]() {
+      const int rc = CheckOverwrite("tessellate", {args->output}, *force);
+      return rc != kExitOk ? rc : RunTessellate(*args);
+    };
+  });
 }
 
 }  // namespace dermis::cli
