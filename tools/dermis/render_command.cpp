@@ -3,6 +3,7 @@
 // one view, a turntable or the frames of a clip as a contact sheet, optionally coloured by the
 // fit error with a legend.
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -45,6 +46,7 @@ struct RenderArgs {
   bool frame_files = false;
   double fps = kDefaultPoseStepsPerSecond;
   std::string caption;
+  std::string series;  // surfaces: displacement levels, one view each
   bool force = false;
   bool quiet = false;
 };
@@ -88,8 +90,8 @@ float ErrorRange(const std::vector<render::Mesh>& meshes) {
   return all[k] > 0.0f ? all[k] : 1.0f;
 }
 
-// A version-1 surface tessellated at `level`.
-Status SurfaceMesh(const RenderArgs& a, std::vector<render::Mesh>* out) {
+// A version-1 surface tessellated at `level` with `displacement_levels` (-1: all).
+Status SurfaceMesh(const RenderArgs& a, int displacement_levels, std::vector<render::Mesh>* out) {
   DisplacedSurface surface;
   Status s = ReadDsurf(a.input, &surface);
   if (!s.ok()) return s;
@@ -100,9 +102,9 @@ Status SurfaceMesh(const RenderArgs& a, std::vector<render::Mesh>* out) {
   if (!s.ok()) return s;
   std::unique_ptr<TruncatedDisplacement> truncated;
   const Displacement* disp = surface.displacement.get();
-  if (disp && a.displacement_levels >= 0) {
+  if (disp && displacement_levels >= 0) {
     truncated =
-        std::make_unique<TruncatedDisplacement>(surface.displacement.get(), a.displacement_levels);
+        std::make_unique<TruncatedDisplacement>(surface.displacement.get(), displacement_levels);
     disp = truncated.get();
   }
   const std::size_t n = pattern.samples.size();
@@ -220,13 +222,34 @@ int RunRender(const RenderArgs& a) {
       return Usage(
           "--heatmap error on a surface needs --reference MESH (the data it was fitted to)");
     }
-    std::vector<render::Mesh> meshes;
-    Status s = SurfaceMesh(a, &meshes);
-    if (!s.ok()) return Fail(s);
+    // One surface per displacement level of --series (or the one --displacement-levels).
+    std::vector<int> levels = {a.displacement_levels};
+    if (!a.series.empty()) {
+      levels.clear();
+      std::size_t at = 0;
+      while (at <= a.series.size()) {
+        const std::size_t comma = std::min(a.series.find(',', at), a.series.size());
+        const std::string item = a.series.substr(at, comma - at);
+        int L = -2;
+        const auto r = std::from_chars(item.data(), item.data() + item.size(), L);
+        if (r.ec != std::errc() || r.ptr != item.data() + item.size() || L < -1 || L > 16) {
+          return Usage("--series '" + a.series +
+                       "' must list displacement levels -1..16, e.g. 0,2,4");
+        }
+        levels.push_back(L);
+        at = comma + 1;
+      }
+    }
+    std::vector<std::vector<render::Mesh>> surfaces(levels.size());
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+      const Status s = SurfaceMesh(a, levels[k], &surfaces[k]);
+      if (!s.ok()) return Fail(s);
+    }
+    std::vector<std::string> stats(levels.size());
     if (error_map) {
       PolygonMesh ref;
       Index dropped = 0;
-      s = ReadFitInput(a.reference, &ref, &dropped);
+      const Status s = ReadFitInput(a.reference, &ref, &dropped);
       if (!s.ok()) return Fail(s);
       std::vector<std::uint32_t> tris;
       for (Index f = 0; f < ref.num_faces(); ++f) {
@@ -238,16 +261,45 @@ int RunRender(const RenderArgs& a) {
         }
       }
       if (tris.empty()) return Fail(Status::InvalidInput(a.reference + ": has no faces"));
-      DistanceMap(ref.positions, tris, &meshes);
+      float range = 0.0f;
+      for (std::size_t k = 0; k < levels.size(); ++k) {
+        DistanceMap(ref.positions, tris, &surfaces[k]);
+        range = std::max(range, ErrorRange(surfaces[k]));
+        double sum = 0.0, worst = 0.0;
+        std::size_t n = 0;
+        for (const render::Mesh& m : surfaces[k]) {
+          for (float e : m.scalar) {
+            sum += e;
+            worst = std::max(worst, static_cast<double>(e));
+            ++n;
+          }
+        }
+        char line[160];
+        std::snprintf(line, sizeof(line), "mean %.3g max %.3g",
+                      n ? sum / static_cast<double>(n) : 0.0, worst);
+        stats[k] = line;
+      }
       view.show_legend = true;
-      view.scalar_max = ErrorRange(meshes);
+      view.scalar_max = range;  // one scale for every level
       view.legend = "distance to data";
     }
     const int views = std::max(1, a.turntable);
-    for (int k = 0; k < views; ++k) {
-      if (a.turntable > 0)
-        view.azimuth = a.azimuth + 360.0f * static_cast<float>(k) / static_cast<float>(views);
-      images.push_back(render::Render(meshes, view));
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+      if (!a.series.empty()) {
+        const std::string name =
+            levels[k] < 0 ? std::string("all levels") : "levels " + std::to_string(levels[k]);
+        view.caption =
+            a.caption.empty() ? name + (error_map ? ": " + stats[k] : std::string()) : a.caption;
+        if (error_map && !a.quiet) {
+          std::fprintf(stderr, "dermis render: displacement %s: distance to data %s\n",
+                       name.c_str(), stats[k].c_str());
+        }
+      }
+      for (int v = 0; v < views; ++v) {
+        if (a.turntable > 0)
+          view.azimuth = a.azimuth + 360.0f * static_cast<float>(v) / static_cast<float>(views);
+        images.push_back(render::Render(surfaces[k], view));
+      }
     }
   } else {
     Character ch;
@@ -436,6 +488,9 @@ void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
       ->check(CLI::Range(0.001, 1000.0))
       ->capture_default_str();
   cmd->add_option("--caption", args->caption, "Text at the top left");
+  cmd->add_option("--series", args->series,
+                  "Surfaces: one view per displacement level listed (e.g. 0,2,4,-1; -1: all), "
+                  "as a contact sheet; with --heatmap error each is captioned with its error");
   cmd->add_flag("-f,--force", args->force, "Overwrite output files that exist");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   CLI::Option* time = cmd->get_option("--time");
