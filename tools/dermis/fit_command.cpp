@@ -52,6 +52,7 @@ void MakeParent(const std::string& path) {
 
 nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   nlohmann::ordered_json j;
+  j["schema"] = "dermis.fit/1";
   j["input"] = a.input;
   j["output"] = a.output;
   j["points"] = r.points;
