@@ -13,10 +13,10 @@
 #include <utility>
 #include <vector>
 
-#include "dermis/runtime/character.h"
 #include "dermis/offline/character_fit.h"
 #include "dermis/offline/character_pose.h"
 #include "dermis/plugins/gltf.h"
+#include "dermis/runtime/character.h"
 #include "support/external_checks.h"
 
 namespace dermis {

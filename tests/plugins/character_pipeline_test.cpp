@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "dermis/asset/asset_validate.h"
-#include "dermis/runtime/character.h"
 #include "dermis/offline/character_export.h"
 #include "dermis/offline/character_fit.h"
 #include "dermis/plugins/gltf.h"
+#include "dermis/runtime/character.h"
 #include "support/assimp_counts.h"
 #include "support/external_checks.h"
 

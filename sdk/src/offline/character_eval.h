@@ -10,8 +10,8 @@
 
 #include "dermis/asset/asset.h"
 #include "dermis/core/status.h"
-#include "dermis/runtime/character.h"
 #include "dermis/offline/character_export.h"
+#include "dermis/runtime/character.h"
 #include "dermis/surface/bspline_displacement.h"
 #include "dermis/surface/local_patch.h"
 

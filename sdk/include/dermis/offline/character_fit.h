@@ -9,8 +9,8 @@
 #include <functional>
 #include <string>
 
-#include "dermis/runtime/character.h"
 #include "dermis/offline/surface_fit.h"
+#include "dermis/runtime/character.h"
 
 namespace dermis {
 
