@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "dermis/offline/builtin_meshes.h"
+#include "dermis/offline/character_fit.h"
 
 namespace dermis::test {
 
@@ -162,6 +163,17 @@ Asset TwoCylinders() {
   a.scenes.push_back(scene);
   a.default_scene = 0;
   return a;
+}
+
+const Character& FittedCylinders() {
+  static const Character ch = [] {
+    Character c;
+    CharacterFitOptions options;
+    options.fit.threads = 2;
+    REQUIRE(FitCharacter(TwoCylinders(), options, &c, nullptr).ok());
+    return c;
+  }();
+  return ch;
 }
 
 }  // namespace dermis::test

@@ -10,6 +10,7 @@
 #include "dermis/asset/asset.h"
 #include "dermis/offline/domain_builder.h"
 #include "dermis/offline/polygon_mesh.h"
+#include "dermis/runtime/character.h"
 #include "dermis/surface/displacement.h"
 
 namespace dermis::test {
@@ -36,6 +37,10 @@ void AddCylinder(double x0, AssetPrimitive* prim);
 /// Two capsules (two components) and a lone triangle (too small to fit) in one mesh drawn by a
 /// skinned node; skeleton root -> j0 (at the origin) -> j1 (at y = 1), both joints of the skin.
 Asset TwoCylinders();
+
+/// TwoCylinders() fitted once with the default character options (2 threads), shared by the
+/// tests of one executable.
+const Character& FittedCylinders();
 
 /// Deterministic uniform numbers in [0, 1).
 class Lcg {

@@ -18,17 +18,6 @@
 namespace dermis {
 namespace {
 
-const Character& FittedCylinders() {
-  static const Character ch = [] {
-    Character c;
-    CharacterFitOptions options;
-    options.fit.threads = 2;
-    REQUIRE(FitCharacter(test::TwoCylinders(), options, &c, nullptr).ok());
-    return c;
-  }();
-  return ch;
-}
-
 /// Builds a poser (REQUIREs success; always true).
 bool BuildPoser(const Character& ch, const CharacterPoseOptions& options, CharacterPoser* out) {
   const Status s = CharacterPoser::Build(ch, options, out);
@@ -151,7 +140,7 @@ TEST_CASE("character pose: clip step times") {
 }
 
 TEST_CASE("character pose: the bind pose reproduces the bound export") {
-  const Character& ch = FittedCylinders();
+  const Character& ch = test::FittedCylinders();
   Asset bound;
   REQUIRE(BuildBoundAsset(ch, CharacterExportOptions{}, &bound).ok());
   for (const DeformerKind kind : kAllDeformers) {
@@ -186,7 +175,7 @@ TEST_CASE("character pose: the bind pose reproduces the bound export") {
 }
 
 TEST_CASE("character pose: a rigid motion of the skeleton moves the surface rigidly") {
-  const Character& ch = FittedCylinders();
+  const Character& ch = test::FittedCylinders();
   // A static version: the same mesh without skin, drawn by a node under the moving root.
   Asset static_asset = test::TwoCylinders();
   static_asset.nodes[3].skin = kInvalidIndex;
@@ -240,7 +229,7 @@ TEST_CASE("character pose: a rigid motion of the skeleton moves the surface rigi
 }
 
 TEST_CASE("character pose: the two cylinders bent at the joint") {
-  const Character& ch = FittedCylinders();
+  const Character& ch = test::FittedCylinders();
   const Asset source = test::TwoCylinders();
   const glm::dquat q = glm::angleAxis(0.5 * M_PI, glm::dvec3(0, 0, 1));
   // Skin matrix of j1: T(0, 1, 0) R T(0, -1, 0).
@@ -446,7 +435,7 @@ TEST_CASE("character pose: the bake replays the poses as morph targets") {
   CharacterPoser poser;
   CharacterPoseOptions options;
   options.deformer = DeformerKind::kLbs;
-  REQUIRE(CharacterPoser::Build(FittedCylinders(), options, &poser).ok());
+  REQUIRE(CharacterPoser::Build(test::FittedCylinders(), options, &poser).ok());
   Asset baked;
   const Status s = BuildBakedAsset(&poser, 30.0, &baked, nullptr);
   CHECK_FALSE(s.ok());
@@ -454,7 +443,7 @@ TEST_CASE("character pose: the bake replays the poses as morph targets") {
 }
 
 TEST_CASE("character pose: the static asset of a pose") {
-  const Character& ch = FittedCylinders();
+  const Character& ch = test::FittedCylinders();
   CharacterPoseOptions options;
   options.deformer = DeformerKind::kDqs;
   CharacterPoser poser;

@@ -11,7 +11,6 @@
 #include <new>
 
 #include "dermis/dermis.h"
-#include "dermis/offline/character_fit.h"
 #include "dermis/runtime/runtime.h"
 #include "test_meshes.h"
 
@@ -47,10 +46,7 @@ void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 namespace dermis {
 
 TEST_CASE("runtime: per-frame calls do not allocate") {
-  Character ch;
-  CharacterFitOptions options;
-  REQUIRE(FitCharacter(test::TwoCylinders(), options, &ch, nullptr).ok());
-  const std::string bytes = SerializeCharacter(ch);
+  const std::string bytes = SerializeCharacter(test::FittedCylinders());
   std::unique_ptr<RuntimeCharacter> rc;
   REQUIRE(RuntimeCharacter::FromBytes(bytes, "cylinders.dsurf", &rc).ok());
   std::vector<float> palette(32, 0.0f);

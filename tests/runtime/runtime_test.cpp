@@ -167,23 +167,8 @@ TEST_CASE("runtime: results do not depend on threads, block splits or the plan's
   CHECK_FALSE(EvaluationPlan::Build(*cs.domain, &wavy, wrong.data(), wrong.size(), {}, &p).ok());
 }
 
-namespace {
-
-const Character& FittedCylinders() {
-  static const Character ch = [] {
-    Character c;
-    CharacterFitOptions options;
-    options.fit.threads = 2;
-    REQUIRE(FitCharacter(test::TwoCylinders(), options, &c, nullptr).ok());
-    return c;
-  }();
-  return ch;
-}
-
-}  // namespace
-
 TEST_CASE("runtime: character jobs match the offline poser") {
-  const Character& ch = FittedCylinders();
+  const Character& ch = test::FittedCylinders();
   std::unique_ptr<RuntimeCharacter> rc;
   // Through the file format, as an engine loads it.
   REQUIRE(RuntimeCharacter::FromBytes(SerializeCharacter(ch), "cylinders.dsurf", &rc).ok());
@@ -262,7 +247,7 @@ TEST_CASE("runtime: character jobs match the offline poser") {
 }
 
 TEST_CASE("runtime: jobs refuse bad input and loading names the file") {
-  const Character& ch = FittedCylinders();
+  const Character& ch = test::FittedCylinders();
   std::unique_ptr<RuntimeCharacter> rc, other;
   REQUIRE(RuntimeCharacter::FromBytes(SerializeCharacter(ch), "a.dsurf", &rc).ok());
   REQUIRE(RuntimeCharacter::FromBytes(SerializeCharacter(ch), "b.dsurf", &other).ok());
