@@ -3,7 +3,8 @@
 // with 540 control vertices, reports the fit's own errors and timings, checks them
 // independently against the level-16 tessellation (point-to-triangle distances), and checks
 // that --threads 1 and 2 give the same .dsurf bytes.
-// Usage (from the repo root): bench_fit [OBJ|PLY] [--control-vertices N] [--repeat R]
+// Usage (from the repo root): bench_fit [OBJ|PLY] [--control-vertices N] [--density D]
+//                             [--repeat R]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,9 +25,12 @@ using namespace dermis;
 int main(int argc, char** argv) {
   std::string path = "../shared/data/scans/stanford-bunny.obj";
   int control_vertices = 540, repeat = 3;
+  double density = -1.0;  // -1: FitOptions' default
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--control-vertices") == 0 && i + 1 < argc) {
       control_vertices = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--density") == 0 && i + 1 < argc) {
+      density = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
       repeat = std::max(1, std::atoi(argv[++i]));
     } else {
@@ -51,6 +55,7 @@ int main(int argc, char** argv) {
   input.points_dropped = dropped;
   FitOptions options;
   options.control_vertices = control_vertices;
+  if (density >= 0.0) options.displacement.density = density;
   std::vector<double> totals;
   FitReport report;
   FittedSurface fitted;
