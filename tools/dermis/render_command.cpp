@@ -91,14 +91,12 @@ float ErrorRange(const std::vector<render::Mesh>& meshes) {
 }
 
 // A version-1 surface tessellated at `level` with `displacement_levels` (-1: all).
-Status SurfaceMesh(const RenderArgs& a, int displacement_levels, std::vector<render::Mesh>* out) {
-  DisplacedSurface surface;
-  Status s = ReadDsurf(a.input, &surface);
-  if (!s.ok()) return s;
+Status SurfaceMesh(const RenderArgs& a, const DisplacedSurface& surface, int displacement_levels,
+                   std::vector<render::Mesh>* out) {
   std::vector<LocalPatch> patches(surface.rest_positions.size());
   surface.domain->FitPatches(surface.rest_positions.data(), patches.data());
   TessellationPattern pattern;
-  s = TessellationPattern::Build(surface.domain->topology(), a.level, &pattern);
+  const Status s = TessellationPattern::Build(surface.domain->topology(), a.level, &pattern);
   if (!s.ok()) return s;
   std::unique_ptr<TruncatedDisplacement> truncated;
   const Displacement* disp = surface.displacement.get();
@@ -177,6 +175,205 @@ bool ParseSize(const std::string& s, int* w, int* h) {
   return *w >= 16 && *h >= 16 && *w <= 8192 && *h <= 8192;
 }
 
+// A version-1 surface (no pose): one view per displacement level of --series, or per turntable
+// angle. Returns an exit status.
+int RenderSurface(const RenderArgs& a, const std::string& bytes, render::View* view_out,
+                  std::vector<render::Image>* images) {
+  render::View& view = *view_out;
+  const bool error_map = a.heatmap == "error";
+  // A plain surface: no pose; the error map needs the data it was fitted to.
+  if (a.frames > 0 || !a.clip.empty() || a.time_given || !a.compare.empty()) {
+    return Usage(a.input +
+                 " is a surface without a skeleton: --clip, --time, --frames "
+                 "and --compare apply to characters");
+  }
+  if (error_map && a.reference.empty()) {
+    return Usage("--heatmap error on a surface needs --reference MESH (the data it was fitted to)");
+  }
+  // One surface per displacement level of --series (or the one --displacement-levels).
+  std::vector<int> levels = {a.displacement_levels};
+  if (!a.series.empty()) {
+    levels.clear();
+    std::size_t at = 0;
+    while (at <= a.series.size()) {
+      const std::size_t comma = std::min(a.series.find(',', at), a.series.size());
+      const std::string item = a.series.substr(at, comma - at);
+      int L = -2;
+      const auto r = std::from_chars(item.data(), item.data() + item.size(), L);
+      if (r.ec != std::errc() || r.ptr != item.data() + item.size() || L < -1 || L > 16) {
+        return Usage("--series '" + a.series +
+                     "' must list displacement levels -1..16, e.g. 0,2,4");
+      }
+      levels.push_back(L);
+      at = comma + 1;
+    }
+  }
+  DisplacedSurface surface;
+  if (const Status s = ParseDsurf(bytes, a.input, &surface); !s.ok()) return Fail(s);
+  std::vector<std::vector<render::Mesh>> surfaces(levels.size());
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    const Status s = SurfaceMesh(a, surface, levels[k], &surfaces[k]);
+    if (!s.ok()) return Fail(s);
+  }
+  std::vector<std::string> stats(levels.size());
+  if (error_map) {
+    PolygonMesh ref;
+    Index dropped = 0;
+    const Status s = ReadFitInput(a.reference, &ref, &dropped);
+    if (!s.ok()) return Fail(s);
+    std::vector<std::uint32_t> tris;
+    for (Index f = 0; f < ref.num_faces(); ++f) {
+      const Index* fv = ref.face_vertices.data() + ref.face_offsets[f];
+      for (Index k = 1; k + 1 < ref.face_size(f); ++k) {
+        tris.insert(tris.end(),
+                    {static_cast<std::uint32_t>(fv[0]), static_cast<std::uint32_t>(fv[k]),
+                     static_cast<std::uint32_t>(fv[k + 1])});
+      }
+    }
+    if (tris.empty()) return Fail(Status::InvalidInput(a.reference + ": has no faces"));
+    float range = 0.0f;
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+      DistanceMap(ref.positions, tris, &surfaces[k]);
+      range = std::max(range, ErrorRange(surfaces[k]));
+      double sum = 0.0, worst = 0.0;
+      std::size_t n = 0;
+      for (const render::Mesh& m : surfaces[k]) {
+        for (float e : m.scalar) {
+          sum += e;
+          worst = std::max(worst, static_cast<double>(e));
+          ++n;
+        }
+      }
+      char line[160];
+      std::snprintf(line, sizeof(line), "mean %.3g max %.3g",
+                    n ? sum / static_cast<double>(n) : 0.0, worst);
+      stats[k] = line;
+    }
+    view.show_legend = true;
+    view.scalar_max = range;  // one scale for every level
+    view.legend = "distance to data";
+  }
+  const int views = std::max(1, a.turntable);
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    if (!a.series.empty()) {
+      const std::string name =
+          levels[k] < 0 ? std::string("all levels") : "levels " + std::to_string(levels[k]);
+      view.caption =
+          a.caption.empty() ? name + (error_map ? ": " + stats[k] : std::string()) : a.caption;
+      if (error_map && !a.quiet) {
+        std::fprintf(stderr, "dermis render: displacement %s: distance to data %s\n", name.c_str(),
+                     stats[k].c_str());
+      }
+    }
+    for (int v = 0; v < views; ++v) {
+      if (a.turntable > 0)
+        view.azimuth = a.azimuth + 360.0f * static_cast<float>(v) / static_cast<float>(views);
+      images->push_back(render::Render(surfaces[k], view));
+    }
+  }
+  return kExitOk;
+}
+
+// A character posed at --time or over --frames of a clip, with --compare's deformer as a second
+// row. Returns an exit status.
+int RenderCharacter(const RenderArgs& a, const std::string& bytes, render::View* view_out,
+                    std::vector<render::Image>* images) {
+  render::View& view = *view_out;
+  const bool error_map = a.heatmap == "error";
+  std::vector<std::string> captions;
+  Character ch;
+  Status s = ParseCharacter(bytes, a.input, &ch);
+  if (!s.ok()) return Fail(s);
+  int clip = -1;
+  s = ResolveClip(ch.asset, a.input, a.clip, &clip);
+  if (!s.ok()) return Fail(s);
+  if (clip < 0 && (a.frames > 0 || (a.time_given && a.time != 0.0))) {
+    return Fail(Status::InvalidInput(a.input + ": --time and --frames apply to a clip (" +
+                                     ClipList(ch.asset) + ")"));
+  }
+  // One poser per deformer drawn: the primary one, and --compare's as a second row.
+  std::vector<std::string> deformers = {a.deformer};
+  if (!a.compare.empty()) deformers.push_back(a.compare);
+  std::vector<CharacterPoser> posers(deformers.size());
+  for (std::size_t k = 0; k < deformers.size(); ++k) {
+    CharacterPoseOptions po;
+    po.deformer = DeformerFromName(deformers[k]);
+    po.mode = PoseModeFromName(a.mode);
+    po.level = a.level;
+    po.displacement_levels = a.displacement_levels;
+    po.threads = 0;
+    s = CharacterPoser::Build(ch, po, &posers[k]);
+    if (!s.ok()) return Fail(s);
+  }
+  CharacterPoser& poser = posers[0];
+  // The times to draw.
+  std::vector<double> times;
+  if (a.frames > 0) {
+    const double duration = ch.asset.animations[static_cast<std::size_t>(clip)].Duration();
+    for (int k = 0; k < a.frames; ++k) {
+      times.push_back(a.frames == 1 ? 0.0 : duration * k / (a.frames - 1));
+    }
+  } else {
+    times.push_back(a.time);
+  }
+  std::vector<float> error;  // per vertex of the drawn primitives, concatenated
+  if (error_map) {
+    std::vector<PosedPrimitive> rest;
+    s = poser.PoseClip(-1, 0.0, a.fps, &rest);
+    if (!s.ok()) return Fail(s);
+    std::vector<render::Mesh> rest_meshes = PosedMeshes(poser, rest);
+    std::vector<Vec3> ref;
+    std::vector<std::uint32_t> tris;
+    SourceAtRest(ch.asset, &ref, &tris);
+    DistanceMap(ref, tris, &rest_meshes);
+    for (const render::Mesh& m : rest_meshes)
+      error.insert(error.end(), m.scalar.begin(), m.scalar.end());
+    view.show_legend = true;
+    view.scalar_max = ErrorRange(rest_meshes);
+    view.legend = "distance to source";
+  }
+  std::vector<std::vector<render::Mesh>> frames;
+  render::Box box;
+  for (std::size_t k = 0; k < posers.size(); ++k) {
+    for (double t : times) {
+      std::vector<PosedPrimitive> posed;
+      s = posers[k].PoseClip(clip, t, a.fps, &posed);
+      if (!s.ok()) return Fail(s);
+      std::vector<render::Mesh> meshes = PosedMeshes(posers[k], posed);
+      std::size_t at = 0;
+      for (render::Mesh& m : meshes) {
+        if (error_map) {
+          m.scalar.assign(error.begin() + static_cast<std::ptrdiff_t>(at),
+                          error.begin() + static_cast<std::ptrdiff_t>(at + m.positions.size()));
+        }
+        at += m.positions.size();
+      }
+      const render::Box b = render::Bounds(meshes);
+      if (!b.empty()) {
+        box.Add(b.lo);
+        box.Add(b.hi);
+      }
+      frames.push_back(std::move(meshes));
+      char cap[96];
+      std::snprintf(cap, sizeof(cap), "%s t=%.2fs", deformers[k].c_str(), t);
+      captions.push_back(clip >= 0 ? std::string(cap) : deformers[k] + " rest");
+    }
+  }
+  view.frame = box;  // one scale for every frame
+  const int views = std::max(1, a.turntable);
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    for (int k = 0; k < views; ++k) {
+      if (a.turntable > 0)
+        view.azimuth = a.azimuth + 360.0f * static_cast<float>(k) / static_cast<float>(views);
+      if (a.caption.empty() && (frames.size() > 1 || !a.compare.empty())) {
+        view.caption = captions[f];
+      }
+      images->push_back(render::Render(frames[f], view));
+    }
+  }
+  return kExitOk;
+}
+
 int RunRender(const RenderArgs& a) {
   int width = 0, height = 0;
   if (!ParseSize(a.size, &width, &height)) {
@@ -190,8 +387,6 @@ int RunRender(const RenderArgs& a) {
   if (!a.compare.empty() && a.turntable > 0)
     return Usage("--compare and --turntable exclude each other");
   if (const int rc = CheckOverwrite("render", {a.output}, a.force); rc != kExitOk) return rc;
-  const bool error_map = a.heatmap == "error";
-
   std::string bytes;
   {
     const Status s = ReadFileBytes(a.input, "the input", &bytes);
@@ -209,190 +404,9 @@ int RunRender(const RenderArgs& a) {
   view.elevation = a.elevation;
   view.caption = a.caption;
   std::vector<render::Image> images;
-  std::vector<std::string> captions;
-
-  if (version == 1) {
-    // A plain surface: no pose; the error map needs the data it was fitted to.
-    if (a.frames > 0 || !a.clip.empty() || a.time_given || !a.compare.empty()) {
-      return Usage(a.input +
-                   " is a surface without a skeleton: --clip, --time, --frames "
-                   "and --compare apply to characters");
-    }
-    if (error_map && a.reference.empty()) {
-      return Usage(
-          "--heatmap error on a surface needs --reference MESH (the data it was fitted to)");
-    }
-    // One surface per displacement level of --series (or the one --displacement-levels).
-    std::vector<int> levels = {a.displacement_levels};
-    if (!a.series.empty()) {
-      levels.clear();
-      std::size_t at = 0;
-      while (at <= a.series.size()) {
-        const std::size_t comma = std::min(a.series.find(',', at), a.series.size());
-        const std::string item = a.series.substr(at, comma - at);
-        int L = -2;
-        const auto r = std::from_chars(item.data(), item.data() + item.size(), L);
-        if (r.ec != std::errc() || r.ptr != item.data() + item.size() || L < -1 || L > 16) {
-          return Usage("--series '" + a.series +
-                       "' must list displacement levels -1..16, e.g. 0,2,4");
-        }
-        levels.push_back(L);
-        at = comma + 1;
-      }
-    }
-    std::vector<std::vector<render::Mesh>> surfaces(levels.size());
-    for (std::size_t k = 0; k < levels.size(); ++k) {
-      const Status s = SurfaceMesh(a, levels[k], &surfaces[k]);
-      if (!s.ok()) return Fail(s);
-    }
-    std::vector<std::string> stats(levels.size());
-    if (error_map) {
-      PolygonMesh ref;
-      Index dropped = 0;
-      const Status s = ReadFitInput(a.reference, &ref, &dropped);
-      if (!s.ok()) return Fail(s);
-      std::vector<std::uint32_t> tris;
-      for (Index f = 0; f < ref.num_faces(); ++f) {
-        const Index* fv = ref.face_vertices.data() + ref.face_offsets[f];
-        for (Index k = 1; k + 1 < ref.face_size(f); ++k) {
-          tris.insert(tris.end(),
-                      {static_cast<std::uint32_t>(fv[0]), static_cast<std::uint32_t>(fv[k]),
-                       static_cast<std::uint32_t>(fv[k + 1])});
-        }
-      }
-      if (tris.empty()) return Fail(Status::InvalidInput(a.reference + ": has no faces"));
-      float range = 0.0f;
-      for (std::size_t k = 0; k < levels.size(); ++k) {
-        DistanceMap(ref.positions, tris, &surfaces[k]);
-        range = std::max(range, ErrorRange(surfaces[k]));
-        double sum = 0.0, worst = 0.0;
-        std::size_t n = 0;
-        for (const render::Mesh& m : surfaces[k]) {
-          for (float e : m.scalar) {
-            sum += e;
-            worst = std::max(worst, static_cast<double>(e));
-            ++n;
-          }
-        }
-        char line[160];
-        std::snprintf(line, sizeof(line), "mean %.3g max %.3g",
-                      n ? sum / static_cast<double>(n) : 0.0, worst);
-        stats[k] = line;
-      }
-      view.show_legend = true;
-      view.scalar_max = range;  // one scale for every level
-      view.legend = "distance to data";
-    }
-    const int views = std::max(1, a.turntable);
-    for (std::size_t k = 0; k < levels.size(); ++k) {
-      if (!a.series.empty()) {
-        const std::string name =
-            levels[k] < 0 ? std::string("all levels") : "levels " + std::to_string(levels[k]);
-        view.caption =
-            a.caption.empty() ? name + (error_map ? ": " + stats[k] : std::string()) : a.caption;
-        if (error_map && !a.quiet) {
-          std::fprintf(stderr, "dermis render: displacement %s: distance to data %s\n",
-                       name.c_str(), stats[k].c_str());
-        }
-      }
-      for (int v = 0; v < views; ++v) {
-        if (a.turntable > 0)
-          view.azimuth = a.azimuth + 360.0f * static_cast<float>(v) / static_cast<float>(views);
-        images.push_back(render::Render(surfaces[k], view));
-      }
-    }
-  } else {
-    Character ch;
-    Status s = ReadCharacterFile(a.input, &bytes, &ch);
-    if (!s.ok()) return Fail(s);
-    int clip = -1;
-    s = ResolveClip(ch.asset, a.input, a.clip, &clip);
-    if (!s.ok()) return Fail(s);
-    if (clip < 0 && (a.frames > 0 || (a.time_given && a.time != 0.0))) {
-      return Fail(Status::InvalidInput(a.input + ": --time and --frames apply to a clip (" +
-                                       ClipList(ch.asset) + ")"));
-    }
-    // One poser per deformer drawn: the primary one, and --compare's as a second row.
-    std::vector<std::string> deformers = {a.deformer};
-    if (!a.compare.empty()) deformers.push_back(a.compare);
-    std::vector<CharacterPoser> posers(deformers.size());
-    for (std::size_t k = 0; k < deformers.size(); ++k) {
-      CharacterPoseOptions po;
-      po.deformer = DeformerFromName(deformers[k]);
-      po.mode = PoseModeFromName(a.mode);
-      po.level = a.level;
-      po.displacement_levels = a.displacement_levels;
-      po.threads = 0;
-      s = CharacterPoser::Build(ch, po, &posers[k]);
-      if (!s.ok()) return Fail(s);
-    }
-    CharacterPoser& poser = posers[0];
-    // The times to draw.
-    std::vector<double> times;
-    if (a.frames > 0) {
-      const double duration = ch.asset.animations[static_cast<std::size_t>(clip)].Duration();
-      for (int k = 0; k < a.frames; ++k) {
-        times.push_back(a.frames == 1 ? 0.0 : duration * k / (a.frames - 1));
-      }
-    } else {
-      times.push_back(a.time);
-    }
-    std::vector<float> error;  // per vertex of the drawn primitives, concatenated
-    if (error_map) {
-      std::vector<PosedPrimitive> rest;
-      s = poser.PoseClip(-1, 0.0, a.fps, &rest);
-      if (!s.ok()) return Fail(s);
-      std::vector<render::Mesh> rest_meshes = PosedMeshes(poser, rest);
-      std::vector<Vec3> ref;
-      std::vector<std::uint32_t> tris;
-      SourceAtRest(ch.asset, &ref, &tris);
-      DistanceMap(ref, tris, &rest_meshes);
-      for (const render::Mesh& m : rest_meshes)
-        error.insert(error.end(), m.scalar.begin(), m.scalar.end());
-      view.show_legend = true;
-      view.scalar_max = ErrorRange(rest_meshes);
-      view.legend = "distance to source";
-    }
-    std::vector<std::vector<render::Mesh>> frames;
-    render::Box box;
-    for (std::size_t k = 0; k < posers.size(); ++k) {
-      for (double t : times) {
-        std::vector<PosedPrimitive> posed;
-        s = posers[k].PoseClip(clip, t, a.fps, &posed);
-        if (!s.ok()) return Fail(s);
-        std::vector<render::Mesh> meshes = PosedMeshes(posers[k], posed);
-        std::size_t at = 0;
-        for (render::Mesh& m : meshes) {
-          if (error_map) {
-            m.scalar.assign(error.begin() + static_cast<std::ptrdiff_t>(at),
-                            error.begin() + static_cast<std::ptrdiff_t>(at + m.positions.size()));
-          }
-          at += m.positions.size();
-        }
-        const render::Box b = render::Bounds(meshes);
-        if (!b.empty()) {
-          box.Add(b.lo);
-          box.Add(b.hi);
-        }
-        frames.push_back(std::move(meshes));
-        char cap[96];
-        std::snprintf(cap, sizeof(cap), "%s t=%.2fs", deformers[k].c_str(), t);
-        captions.push_back(clip >= 0 ? std::string(cap) : deformers[k] + " rest");
-      }
-    }
-    view.frame = box;  // one scale for every frame
-    const int views = std::max(1, a.turntable);
-    for (std::size_t f = 0; f < frames.size(); ++f) {
-      for (int k = 0; k < views; ++k) {
-        if (a.turntable > 0)
-          view.azimuth = a.azimuth + 360.0f * static_cast<float>(k) / static_cast<float>(views);
-        if (a.caption.empty() && (frames.size() > 1 || !a.compare.empty())) {
-          view.caption = captions[f];
-        }
-        images.push_back(render::Render(frames[f], view));
-      }
-    }
-  }
+  const int rc = version == 1 ? RenderSurface(a, bytes, &view, &images)
+                              : RenderCharacter(a, bytes, &view, &images);
+  if (rc != kExitOk) return rc;
 
   const std::filesystem::path parent = std::filesystem::path(a.output).parent_path();
   if (!parent.empty()) {
