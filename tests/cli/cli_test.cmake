@@ -146,6 +146,12 @@ expect_png(${WORK}/pic/torus.png 2000)
 expect_run(0 "error map 0\\.\\." ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/err.png
            --size 200x160 --heatmap error --reference ${WORK}/dense_torus.obj)
 expect_png(${WORK}/pic/err.png 2000)
+expect_run(0 "displacement levels 0: distance to data mean" ${DERMIS} render
+           ${WORK}/fit/torus.dsurf -o ${WORK}/pic/series.png --size 96x96 --series 0,1,-1
+           --heatmap error --reference ${WORK}/dense_torus.obj)
+expect_png(${WORK}/pic/series.png 2000)
+expect_run(2 "--series" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/x.png
+           --series 0,two)
 expect_run(0 "" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/turn.png
            --size 100x100 --turntable 4 --frame-files -q)
 expect_png(${WORK}/pic/turn.png 2000)
