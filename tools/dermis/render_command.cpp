@@ -64,12 +64,8 @@ int Usage(const std::string& message) {
 
 glm::vec3 F(const Vec3& v) { return glm::vec3(v); }
 
-// Distance from each vertex of `meshes` to the triangles of `reference` (model units).
-void DistanceMap(const std::vector<Vec3>& ref_positions,
-                 const std::vector<std::uint32_t>& ref_triangles,
-                 std::vector<render::Mesh>* meshes) {
-  TriangleDistanceTree tree;
-  tree.Build(ref_positions, ref_triangles);
+// Distance from each vertex of `meshes` to the reference triangles in `tree` (model units).
+void DistanceMap(const TriangleDistanceTree& tree, std::vector<render::Mesh>* meshes) {
   for (render::Mesh& m : *meshes) {
     m.scalar.resize(m.positions.size());
     for (std::size_t i = 0; i < m.positions.size(); ++i) {
@@ -231,9 +227,11 @@ int RenderSurface(const RenderArgs& a, const std::string& bytes, render::View* v
       }
     }
     if (tris.empty()) return Fail(Status::InvalidInput(a.reference + ": has no faces"));
+    TriangleDistanceTree tree;  // once for every level
+    tree.Build(ref.positions, tris);
     float range = 0.0f;
     for (std::size_t k = 0; k < levels.size(); ++k) {
-      DistanceMap(ref.positions, tris, &surfaces[k]);
+      DistanceMap(tree, &surfaces[k]);
       range = std::max(range, ErrorRange(surfaces[k]));
       double sum = 0.0, worst = 0.0;
       std::size_t n = 0;
@@ -325,7 +323,9 @@ int RenderCharacter(const RenderArgs& a, const std::string& bytes, render::View*
     std::vector<Vec3> ref;
     std::vector<std::uint32_t> tris;
     SourceAtRest(ch.asset, &ref, &tris);
-    DistanceMap(ref, tris, &rest_meshes);
+    TriangleDistanceTree tree;
+    tree.Build(ref, tris);
+    DistanceMap(tree, &rest_meshes);
     for (const render::Mesh& m : rest_meshes)
       error.insert(error.end(), m.scalar.begin(), m.scalar.end());
     view.show_legend = true;
