@@ -4,7 +4,8 @@
 // independently against the level-16 tessellation (point-to-triangle distances), and checks
 // that --threads 1 and 2 give the same .dsurf bytes.
 // Usage (from the repo root): bench_fit [OBJ|PLY] [--control-vertices N] [--density D]
-//                             [--repeat R]
+//                             [--control-fit ITERATIONS] [--finest-passes P] [--repeat R]
+//                             [--detail]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,8 +17,10 @@
 
 #include "dermis/offline/point_input.h"
 #include "dermis/offline/surface_fit.h"
+#include "dermis/offline/surface_projection.h"
 #include "dermis/offline/triangle_distance.h"
 #include "dermis/surface/dsurf.h"
+#include "dermis/surface/surface_evaluator.h"
 #include "dermis/surface/tessellation.h"
 
 using namespace dermis;
@@ -25,12 +28,21 @@ using namespace dermis;
 int main(int argc, char** argv) {
   std::string path = "../shared/data/scans/stanford-bunny.obj";
   int control_vertices = 540, repeat = 3;
-  double density = -1.0;  // -1: FitOptions' default
+  bool detail = false;
+  double density = -1.0;   // -1: FitOptions' default
+  int control_fit = -1;    // -1: FitOptions' default
+  int finest_passes = -1;  // -1: FitOptions' default
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--control-vertices") == 0 && i + 1 < argc) {
       control_vertices = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--density") == 0 && i + 1 < argc) {
       density = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--control-fit") == 0 && i + 1 < argc) {
+      control_fit = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--finest-passes") == 0 && i + 1 < argc) {
+      finest_passes = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--detail") == 0) {
+      detail = true;
     } else if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
       repeat = std::max(1, std::atoi(argv[++i]));
     } else {
@@ -56,6 +68,8 @@ int main(int argc, char** argv) {
   FitOptions options;
   options.control_vertices = control_vertices;
   if (density >= 0.0) options.displacement.density = density;
+  if (control_fit >= 0) options.control_fit_iterations = control_fit;
+  if (finest_passes >= 1) options.displacement.finest_passes = finest_passes;
   std::vector<double> totals;
   FitReport report;
   FittedSurface fitted;
@@ -85,6 +99,116 @@ int main(int argc, char** argv) {
     if (IsHeldOut(i, options.holdout, options.holdout_seed)) continue;
     const double d = tree.Query(input.points[i]).distance / report.scale;
     sum += d, mx = std::max(mx, d), ++n;
+  }
+  if (detail) {
+    // Per status: mean E1 at the fitted parameter, true closest distance, and the distance to
+    // the level-16 tessellation, with quantiles of the tessellation excess.
+    const ManifoldDomain& domain = *fitted.surface.domain;
+    std::vector<Vec3> fit_points;
+    for (std::size_t i = 0; i < input.points.size(); ++i) {
+      if (!IsHeldOut(i, options.holdout, options.holdout_seed))
+        fit_points.push_back(input.points[i]);
+    }
+    double se[3] = {0, 0, 0}, sc[3] = {0, 0, 0}, st[3] = {0, 0, 0}, cnt[3] = {0, 0, 0};
+    std::vector<double> excess, e1s;
+    for (std::size_t i = 0; i < fit_points.size(); ++i) {
+      const PointFit& f = fitted.point_fits[i];
+      const int k = static_cast<int>(f.status);
+      const double dt = tree.Query(fit_points[i]).distance / report.scale;
+      st[k] += dt, cnt[k] += 1;
+      if (f.status == PointFitStatus::kOutside) continue;
+      SurfacePoint sp;
+      EvaluateSurface(domain, fitted.surface.patches.data(), fitted.displacement.get(), f.face,
+                      f.uv, &sp);
+      const double e =
+          std::sqrt(glm::dot(sp.position - fit_points[i], sp.position - fit_points[i])) /
+          report.scale;
+      Index face = f.face;
+      Vec2 uv = f.uv;
+      const double c = ClosestPointOnSurface(domain, fitted.surface.patches.data(),
+                                             fitted.displacement.get(), fit_points[i], &face, &uv) /
+                       report.scale;
+      se[k] += e, sc[k] += c;
+      if (k == 0) excess.push_back(dt - c), e1s.push_back(e);
+    }
+    const char* names[3] = {"optimized", "not converged", "outside"};
+    for (int k = 0; k < 3; ++k) {
+      std::printf(
+          "detail: %-13s %6.0f points: sum E1 %.4g, sum closest %.4g, sum tess %.4g "
+          "(per fitted point: %.3g / %.3g / %.3g)\n",
+          names[k], cnt[k], se[k], sc[k], st[k], se[k] / (cnt[0] + cnt[1]),
+          sc[k] / (cnt[0] + cnt[1]), st[k] / (cnt[0] + cnt[1]));
+    }
+    auto quantiles = [](std::vector<double> v, const char* name) {
+      std::sort(v.begin(), v.end());
+      auto q = [&](double f) {
+        return v[static_cast<std::size_t>(f * static_cast<double>(v.size() - 1))];
+      };
+      std::printf("detail: %s quantiles 10%% %.3g, 50%% %.3g, 90%% %.3g, 99%% %.3g, max %.3g\n",
+                  name, q(0.1), q(0.5), q(0.9), q(0.99), v.back());
+    };
+    quantiles(e1s, "optimized E1");
+    {
+      // Excess of the tessellation distance over the true distance, by the valence of the
+      // dominant corner, and the check at finer levels.
+      double ex[16] = {0}, nx[16] = {0}, ebin[5] = {0}, nbin[5] = {0};
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < fit_points.size(); ++i) {
+        const PointFit& f = fitted.point_fits[i];
+        if (f.status != PointFitStatus::kOptimized) continue;
+        const int corner = (f.uv.x > 0.5 ? 1 : 0) + (f.uv.y > 0.5 ? (f.uv.x > 0.5 ? 1 : 3) : 0);
+        const Index v = domain.topology().face_vertex(f.face, corner);
+        const int val = std::min(domain.topology().valence(v), 15);
+        ex[val] += excess[j], nx[val] += 1;
+        const double edge =
+            std::min(std::min(f.uv.x, 1.0 - f.uv.x), std::min(f.uv.y, 1.0 - f.uv.y));
+        const int bin = std::min(4, static_cast<int>(edge / 0.1));
+        ebin[bin] += excess[j++], nbin[bin] += 1;
+      }
+      for (int k = 0; k < 16; ++k)
+        if (nx[k] > 0)
+          std::printf("detail: valence %d: %.0f points, mean tess excess %.3g\n", k, nx[k],
+                      ex[k] / nx[k]);
+      for (int b = 0; b < 5; ++b)
+        std::printf(
+            "detail: distance to face edge %.1f..%.1f: %.0f points, mean tess excess %.3g, share "
+            "of mean %.3g\n",
+            0.1 * b, 0.1 * b + 0.1, nbin[b], ebin[b] / nbin[b],
+            ebin[b] / static_cast<double>(fit_points.size()));
+      for (int level : {32, 64}) {
+        TessellationPattern pat;
+        TessellationPattern::Build(domain.topology(), level, &pat);
+        std::vector<Vec3> xs(pat.samples.size());
+        EvaluateSamples(domain, fitted.surface.patches.data(), fitted.displacement.get(),
+                        pat.samples.data(), xs.size(), xs.data(), nullptr);
+        TriangleDistanceTree tr;
+        tr.Build(xs, pat.triangles);
+        double sm = 0;
+        for (const Vec3& p : fit_points) sm += tr.Query(p).distance / report.scale;
+        std::printf("detail: level %d tessellation: mean %.3g\n", level,
+                    sm / static_cast<double>(fit_points.size()));
+      }
+    }
+    {
+      // Share of the sums from points above each threshold.
+      std::vector<double> tess_all, e1_all;
+      for (std::size_t i = 0; i < fit_points.size(); ++i) {
+        tess_all.push_back(tree.Query(fit_points[i]).distance / report.scale);
+      }
+      for (double t : {1e-4, 3e-4, 1e-3, 3e-3}) {
+        double st_hi = 0, se_hi = 0, n_hi = 0;
+        for (double v : tess_all)
+          if (v > t) st_hi += v, n_hi += 1;
+        for (double v : e1s)
+          if (v > t) se_hi += v;
+        std::printf(
+            "detail: above %.0e: tess %.0f points carry %.3g of the mean; optimized E1 "
+            "above it carries %.3g\n",
+            t, n_hi, st_hi / static_cast<double>(fit_points.size()),
+            se_hi / static_cast<double>(fit_points.size()));
+      }
+    }
+    quantiles(excess, "optimized tess - closest");
   }
   // Determinism across thread counts.
   bool identical = true;

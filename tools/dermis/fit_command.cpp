@@ -30,6 +30,8 @@ struct FitArgs {
   int control_vertices = 540;
   int levels = DisplacementFitOptions{}.max_levels;
   double density = DisplacementFitOptions{}.density;
+  int finest_passes = DisplacementFitOptions{}.finest_passes;
+  int control_fit = -1;  // -1: the library's default for the input kind
   double holdout = 0.1;
   int threads = 0;
   bool quiet = false;
@@ -147,6 +149,8 @@ int RunFitCharacter(const FitArgs& a) {
   options.vertex_ratio = a.control_ratio;
   options.fit.displacement.max_levels = a.levels;
   options.fit.displacement.density = a.density;
+  options.fit.displacement.finest_passes = a.finest_passes;
+  if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.threads = a.threads;
   const ProgressLine progress("dermis fit", a.quiet);
   if (progress.enabled()) options.progress = [&](const std::string& st) { progress.Update(st); };
@@ -204,6 +208,8 @@ int RunFit(const FitArgs& a) {
   options.control_vertices = a.control_vertices;
   options.displacement.max_levels = a.levels;
   options.displacement.density = a.density;
+  options.displacement.finest_passes = a.finest_passes;
+  if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
   options.holdout = a.holdout;
   options.threads = a.threads;
   const ProgressLine progress("dermis fit", a.quiet);
@@ -269,6 +275,15 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "get --levels")
       ->check(CLI::Range(0.0, 64.0))
       ->capture_default_str();
+  cmd->add_option("--finest-passes", args->finest_passes,
+                  "BA passes at each chart's finest displacement level")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_option("--control-fit", args->control_fit,
+                  "Rounds of fitting the built control mesh's vertices to the data (0: keep "
+                  "them on the data; default 2 for a surface, 0 for a character; a "
+                  "--control-mesh is always used as is)")
+      ->check(CLI::Range(0, 16));
   cmd->add_option("--holdout", args->holdout, "Fraction of points held out to measure error")
       ->check(CLI::Range(0.0, 0.9))
       ->capture_default_str();

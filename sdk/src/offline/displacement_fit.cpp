@@ -59,7 +59,7 @@ BsplineDisplacementData FitDisplacements(const ManifoldDomain& domain,
                   data.half_extent[c] = r;
                   data.num_levels[c] = static_cast<std::uint8_t>(levels);
                   FitMultilevelBspline(z.data() + start[c], values.data() + start[c], n, r, levels,
-                                       &lattices[c]);
+                                       &lattices[c], nullptr, options.finest_passes);
                 }
               });
   data.offsets.assign(static_cast<std::size_t>(num_charts) + 1, 0);

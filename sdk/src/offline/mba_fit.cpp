@@ -1,6 +1,8 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Multilevel B-spline approximation: the BA step, the coarse-to-fine residual loop and the
-// refinement that merges levels (Lee, Wolberg and Shin 1997; fitting.md section 1). Written
+// refinement that merges levels (Lee, Wolberg and Shin 1997; fitting.md section 1), with the
+// finest level's BA optionally repeated on its own residual (docs/fitting.md, "Finest-level
+// passes"). Written
 // here rather than taken from a library: the MIT one (ddemidov/mba) is not packaged in Debian
 // and keeps no per-level lattices, which the runtime level of detail needs.
 #include "dermis/offline/mba_fit.h"
@@ -65,10 +67,18 @@ void Locate(Vec2 z, double half_extent, int m, int* i, int* j, double bs[4], dou
 
 void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count,
                           double half_extent, int num_levels, std::vector<double>* lattices,
-                          std::vector<double>* residuals) {
+                          std::vector<double>* residuals, int finest_passes) {
   std::vector<double> r(values, values + count);
   std::vector<double> delta, omega, phi, merged, refined;
-  for (int level = 0; level < num_levels; ++level) {
+  if (num_levels <= 0) {
+    if (residuals) *residuals = std::move(r);
+    return;
+  }
+  // Passes 0 .. num_levels - 1 are the levels; the finest level then repeats its BA on what is
+  // left (finest_passes in all), each pass adding its Phi to the same lattice.
+  const int passes = num_levels - 1 + std::max(finest_passes, 1);
+  for (int pass = 0; pass < passes; ++pass) {
+    const int level = std::min(pass, num_levels - 1);
     const int m = 1 << level;
     const int stride = m + 3;
     const std::size_t size = static_cast<std::size_t>(stride) * stride;
@@ -110,16 +120,21 @@ void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count
       }
       r[c] -= f;
     }
-    // Psi_k = R(Psi_{k-1}) + Phi_k.
-    if (level == 0) {
+    // Psi_k = R(Psi_{k-1}) + Phi_k; a repeated pass adds to Psi_k itself.
+    if (pass == 0) {
       merged = phi;
-    } else {
+    } else if (pass < num_levels) {
       refined.assign(size, 0.0);
       RefineBsplineLattice(merged.data(), m / 2, refined.data());
       merged.swap(refined);
       for (std::size_t n = 0; n < size; ++n) merged[n] += phi[n];
+    } else {
+      for (std::size_t n = 0; n < size; ++n) merged[n] += phi[n];
     }
-    lattices->insert(lattices->end(), merged.begin(), merged.end());
+    // Every coarser level is stored once; the finest after its last pass.
+    if (pass < num_levels - 1 || pass == passes - 1) {
+      lattices->insert(lattices->end(), merged.begin(), merged.end());
+    }
   }
   if (residuals) *residuals = std::move(r);
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "dermis/offline/control_fit.h"
 #include "dermis/offline/parallel.h"
 #include "dermis/offline/point_fit.h"
 #include "dermis/offline/surface_projection.h"
@@ -119,11 +120,6 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   const LocalPatch* patches = fitted.surface.patches.data();
   rep.control_vertices = domain.num_vertices();
   rep.control_faces = domain.num_faces();
-  rep.seconds.control_mesh = SecondsSince(t0);
-
-  // 2. Projection and optimisation of the fitted points.
-  progress("projection and optimisation");
-  t0 = Clock::now();
   std::vector<Vec3> fit_points, holdout_points;
   for (std::size_t i = 0; i < input.points.size(); ++i) {
     (IsHeldOut(i, options.holdout, options.holdout_seed) ? holdout_points : fit_points)
@@ -134,6 +130,30 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   pf.threads = rep.threads;
   pf.tolerance = 1e-9 * rep.scale;
   std::vector<PointFit> fits;
+  // A built control mesh lies on the data; moving its vertices so that the smooth domain
+  // surface follows the data leaves far smaller displacements at sharp and thin features. A
+  // given control mesh is used as is.
+  if (!input.control && options.control_fit_iterations > 0 &&
+      static_cast<double>(fit_points.size()) >=
+          options.control_fit_min_points_per_vertex * domain.num_vertices()) {
+    progress("control-vertex fit");
+    ControlFitOptions cf = options.control_fit;
+    cf.threads = rep.threads;
+    std::vector<Vec3> x = fitted.surface.control.positions;
+    for (int it = 0; it < options.control_fit_iterations; ++it) {
+      FitPoints(fitted.surface, fit_points, pf, &fits);
+      s = FitControlPositions(domain, fit_points, fits, cf, &x);
+      if (!s.ok()) return s.WithContext(where);
+      fitted.surface.control.positions = x;
+      domain.FitPatches(x.data(), fitted.surface.patches.data());
+    }
+    if (fitted.control_mesh.positions.size() == x.size()) fitted.control_mesh.positions = x;
+  }
+  rep.seconds.control_mesh = SecondsSince(t0);
+
+  // 2. Projection and optimisation of the fitted points.
+  progress("projection and optimisation");
+  t0 = Clock::now();
   FitPoints(fitted.surface, fit_points, pf, &fits);
   for (const PointFit& f : fits) {
     rep.points_outside += f.status == PointFitStatus::kOutside;

@@ -18,7 +18,13 @@ namespace dermis {
 struct CharacterFitOptions {
   /// Settings of each component's fit. `holdout` is ignored (every vertex is fitted, so each
   /// one gets a parameter); `control_vertices` is ignored when vertex_ratio > 0.
-  FitOptions fit;
+  /// The control-vertex fit is off by default: a character's control mesh has about a quarter
+  /// of its vertices, too few points per control vertex to determine their positions.
+  FitOptions fit = [] {
+    FitOptions f;
+    f.control_fit_iterations = 0;
+    return f;
+  }();
   /// Control vertices per component = welded vertices * vertex_ratio, at least
   /// min_control_vertices, at most what splitting the whole component into quads gives.
   double vertex_ratio = 0.25;

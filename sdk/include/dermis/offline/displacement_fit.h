@@ -19,7 +19,9 @@ struct DisplacementFitOptions {
   /// Levels per chart: the finest lattice has about `density` * sqrt(samples) cells per side
   /// (fitting.md section 6), so the lattice spacing follows the local point spacing. 0 gives
   /// every chart `max_levels`.
-  double density = 2.2;
+  double density = 1.2;
+  /// BA passes at each chart's finest level (FitMultilevelBspline()), >= 1.
+  int finest_passes = 6;
   int threads = 0;  ///< 0: hardware concurrency.
 };
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dermis/core/status.h"
+#include "dermis/offline/control_fit.h"
 #include "dermis/offline/control_mesh.h"
 #include "dermis/offline/displacement_fit.h"
 #include "dermis/offline/domain_builder.h"
@@ -29,6 +30,13 @@ struct FitOptions {
   /// that count; false: it is an error (the CLI's --control-vertices).
   bool clamp_control_vertices = false;
   DomainOptions domain;
+  /// Rounds of projection + control-vertex least squares (control_fit.h) applied to a control
+  /// mesh built from the data (never to a given one); 0 keeps the simplified positions. Skipped
+  /// where the data is too sparse to determine the positions: fewer than
+  /// control_fit_min_points_per_vertex fitted points per control vertex.
+  int control_fit_iterations = 2;
+  double control_fit_min_points_per_vertex = 16.0;
+  ControlFitOptions control_fit;
   /// Levels of the displacement functions (max_levels is --levels; threads is ignored).
   DisplacementFitOptions displacement;
   /// Fraction of the points held out of the fit and used only to measure (E2), in [0, 1).
