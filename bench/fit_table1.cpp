@@ -4,8 +4,8 @@
 // independently against the level-16 tessellation (point-to-triangle distances), and checks
 // that --threads 1 and 2 give the same .dsurf bytes.
 // Usage (from the repo root): bench_fit [OBJ|PLY] [--control-vertices N] [--density D]
-//                             [--control-fit ITERATIONS] [--finest-passes P] [--repeat R]
-//                             [--detail]
+//                             [--control-fit ITERATIONS] [--finest-passes P] [--smoothing S]
+//                             [--repeat R] [--detail]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,9 +29,10 @@ int main(int argc, char** argv) {
   std::string path = "../shared/data/scans/stanford-bunny.obj";
   int control_vertices = 540, repeat = 3;
   bool detail = false;
-  double density = -1.0;   // -1: FitOptions' default
-  int control_fit = -1;    // -1: FitOptions' default
-  int finest_passes = -1;  // -1: FitOptions' default
+  double density = -1.0;    // -1: FitOptions' default
+  int control_fit = -1;     // -1: FitOptions' default
+  int finest_passes = -1;   // -1: FitOptions' default
+  double smoothing = -1.0;  // -1: FitOptions' default
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--control-vertices") == 0 && i + 1 < argc) {
       control_vertices = std::atoi(argv[++i]);
@@ -41,6 +42,8 @@ int main(int argc, char** argv) {
       control_fit = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--finest-passes") == 0 && i + 1 < argc) {
       finest_passes = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--smoothing") == 0 && i + 1 < argc) {
+      smoothing = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--detail") == 0) {
       detail = true;
     } else if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
@@ -70,6 +73,7 @@ int main(int argc, char** argv) {
   if (density >= 0.0) options.displacement.density = density;
   if (control_fit >= 0) options.control_fit_iterations = control_fit;
   if (finest_passes >= 1) options.displacement.finest_passes = finest_passes;
+  if (smoothing >= 0.0) options.displacement.smoothing = smoothing;
   std::vector<double> totals;
   FitReport report;
   FittedSurface fitted;
@@ -144,10 +148,34 @@ int main(int argc, char** argv) {
       auto q = [&](double f) {
         return v[static_cast<std::size_t>(f * static_cast<double>(v.size() - 1))];
       };
-      std::printf("detail: %s quantiles 10%% %.3g, 50%% %.3g, 90%% %.3g, 99%% %.3g, max %.3g\n",
-                  name, q(0.1), q(0.5), q(0.9), q(0.99), v.back());
+      std::printf(
+          "detail: %s quantiles 10%% %.3g, 50%% %.3g, 90%% %.3g, 99%% %.3g, 99.9%% %.3g, max "
+          "%.3g\n",
+          name, q(0.1), q(0.5), q(0.9), q(0.99), q(0.999), v.back());
     };
     quantiles(e1s, "optimized E1");
+    {
+      // Surface to data: the level-8 tessellation against the input triangles.
+      TriangleDistanceTree data_tree;
+      std::vector<std::uint32_t> tris;
+      for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const Index o = mesh.face_offsets[f];
+        for (Index k = 1; k + 1 < mesh.face_size(f); ++k) {
+          tris.insert(tris.end(), {static_cast<std::uint32_t>(mesh.face_vertices[o]),
+                                   static_cast<std::uint32_t>(mesh.face_vertices[o + k]),
+                                   static_cast<std::uint32_t>(mesh.face_vertices[o + k + 1])});
+        }
+      }
+      data_tree.Build(mesh.positions, tris);
+      TessellationPattern pat;
+      TessellationPattern::Build(domain.topology(), 8, &pat);
+      std::vector<Vec3> xs(pat.samples.size());
+      EvaluateSamples(domain, fitted.surface.patches.data(), fitted.displacement.get(),
+                      pat.samples.data(), xs.size(), xs.data(), nullptr);
+      std::vector<double> sd;
+      for (const Vec3& p : xs) sd.push_back(data_tree.Query(p).distance / report.scale);
+      quantiles(sd, "surface -> data (level 8)");
+    }
     {
       // Excess of the tessellation distance over the true distance, by the valence of the
       // dominant corner, and the check at finer levels.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Paper Fig. 6: the Stanford bunny fitted with 540 control vertices, shown with 0, 2, 4, 6 and
+# Paper Fig. 6: the Stanford bunny fitted with 540 control vertices, shown with 0, 2, 4, 5 and
 # all displacement levels (runtime level of detail: the same .dsurf, fewer B-spline levels),
 # coloured by the distance to the scan, with the error of each level in a table.
 #
@@ -15,7 +15,7 @@ out=out/multiresolution
 input=../shared/data/scans/stanford-bunny.obj
 control=540
 size=480x480
-series=0,2,4,6,-1
+series=0,2,4,5,-1
 for arg in "$@"; do
   case "$arg" in
     --small) input=../shared/data/scans/bunny-npm-1839v.obj; control=200; size=200x200

@@ -29,8 +29,9 @@ struct FitArgs {
   std::string report;
   int control_vertices = 540;
   int levels = DisplacementFitOptions{}.max_levels;
-  double density = DisplacementFitOptions{}.density;
+  double density = -1.0;  // < 0 here and below: the library's default for the input kind
   int finest_passes = DisplacementFitOptions{}.finest_passes;
+  double smoothing = -1.0;
   int control_fit = -1;  // -1: the library's default for the input kind
   double holdout = 0.1;
   int threads = 0;
@@ -148,8 +149,9 @@ int RunFitCharacter(const FitArgs& a) {
   CharacterFitOptions options;
   options.vertex_ratio = a.control_ratio;
   options.fit.displacement.max_levels = a.levels;
-  options.fit.displacement.density = a.density;
+  if (a.density >= 0.0) options.fit.displacement.density = a.density;
   options.fit.displacement.finest_passes = a.finest_passes;
+  if (a.smoothing >= 0.0) options.fit.displacement.smoothing = a.smoothing;
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.threads = a.threads;
   const ProgressLine progress("dermis fit", a.quiet);
@@ -207,8 +209,9 @@ int RunFit(const FitArgs& a) {
   FitOptions options;
   options.control_vertices = a.control_vertices;
   options.displacement.max_levels = a.levels;
-  options.displacement.density = a.density;
+  if (a.density >= 0.0) options.displacement.density = a.density;
   options.displacement.finest_passes = a.finest_passes;
+  if (a.smoothing >= 0.0) options.displacement.smoothing = a.smoothing;
   if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
   options.holdout = a.holdout;
   options.threads = a.threads;
@@ -272,13 +275,16 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
       ->capture_default_str();
   cmd->add_option("--density", args->density,
                   "Finest lattice cells per side per sqrt(points in the chart); 0: all charts "
-                  "get --levels")
-      ->check(CLI::Range(0.0, 64.0))
-      ->capture_default_str();
+                  "get --levels (default 1.0 for a surface, 2.2 for a character)")
+      ->check(CLI::Range(0.0, 64.0));
   cmd->add_option("--finest-passes", args->finest_passes,
                   "BA passes at each chart's finest displacement level")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
+  cmd->add_option("--smoothing", args->smoothing,
+                  "Thin-plate weight of each chart's finest displacement level (0: plain MBA; "
+                  "default 5e-4 for a surface, 0 for a character)")
+      ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--control-fit", args->control_fit,
                   "Rounds of fitting the built control mesh's vertices to the data (0: keep "
                   "them on the data; default 2 for a surface, 0 for a character; a "

@@ -58,8 +58,11 @@ BsplineDisplacementData FitDisplacements(const ManifoldDomain& domain,
                   const int levels = ChooseLevels(n, options);
                   data.half_extent[c] = r;
                   data.num_levels[c] = static_cast<std::uint8_t>(levels);
+                  MbaOptions mba;
+                  mba.finest_passes = options.finest_passes;
+                  mba.smoothing = options.smoothing;
                   FitMultilevelBspline(z.data() + start[c], values.data() + start[c], n, r, levels,
-                                       &lattices[c], nullptr, options.finest_passes);
+                                       &lattices[c], nullptr, mba);
                 }
               });
   data.offsets.assign(static_cast<std::size_t>(num_charts) + 1, 0);

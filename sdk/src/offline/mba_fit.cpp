@@ -1,8 +1,8 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Multilevel B-spline approximation: the BA step, the coarse-to-fine residual loop and the
-// refinement that merges levels (Lee, Wolberg and Shin 1997; fitting.md section 1), with the
-// finest level's BA optionally repeated on its own residual (docs/fitting.md, "Finest-level
-// passes"). Written
+// refinement that merges levels (Lee, Wolberg and Shin 1997; fitting.md section 1). The finest
+// level may repeat its BA on its own residual and then be re-solved as a smoothing spline
+// (bspline_smoothing.cpp; docs/fitting.md, "The finest level"). Written
 // here rather than taken from a library: the MIT one (ddemidov/mba) is not packaged in Debian
 // and keeps no per-level lattices, which the runtime level of detail needs.
 #include "dermis/offline/mba_fit.h"
@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dermis/offline/bspline_smoothing.h"
 #include "dermis/surface/bspline_displacement.h"
 
 namespace dermis {
@@ -67,7 +68,7 @@ void Locate(Vec2 z, double half_extent, int m, int* i, int* j, double bs[4], dou
 
 void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count,
                           double half_extent, int num_levels, std::vector<double>* lattices,
-                          std::vector<double>* residuals, int finest_passes) {
+                          std::vector<double>* residuals, const MbaOptions& options) {
   std::vector<double> r(values, values + count);
   std::vector<double> delta, omega, phi, merged, refined;
   if (num_levels <= 0) {
@@ -76,7 +77,7 @@ void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count
   }
   // Passes 0 .. num_levels - 1 are the levels; the finest level then repeats its BA on what is
   // left (finest_passes in all), each pass adding its Phi to the same lattice.
-  const int passes = num_levels - 1 + std::max(finest_passes, 1);
+  const int passes = num_levels - 1 + std::max(options.finest_passes, 1);
   for (int pass = 0; pass < passes; ++pass) {
     const int level = std::min(pass, num_levels - 1);
     const int m = 1 << level;
@@ -107,6 +108,11 @@ void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count
     phi.assign(size, 0.0);
     for (std::size_t n = 0; n < size; ++n) {
       if (omega[n] > 0.0) phi[n] = delta[n] / omega[n];
+    }
+    // The finest level's last pass: the smoothing spline, from the BA solution.
+    if (pass == passes - 1 && options.smoothing > 0.0) {
+      SmoothBsplineFit(z, r.data(), count, half_extent, m, options.smoothing, options.tension,
+                       options.smoothing_iterations, &phi);
     }
     // Residuals of this level's function.
     for (std::size_t c = 0; c < count; ++c) {

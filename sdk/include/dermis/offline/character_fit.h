@@ -18,11 +18,15 @@ namespace dermis {
 struct CharacterFitOptions {
   /// Settings of each component's fit. `holdout` is ignored (every vertex is fitted, so each
   /// one gets a parameter); `control_vertices` is ignored when vertex_ratio > 0.
-  /// The control-vertex fit is off by default: a character's control mesh has about a quarter
-  /// of its vertices, too few points per control vertex to determine their positions.
+  /// A character's mesh is exact (a game mesh, not a noisy scan) and its vertices are the
+  /// bound export's vertices, so its fit interpolates: plain MBA at density 2.2, no smoothing
+  /// spline. The control-vertex fit is off: a character's control mesh has about a quarter of
+  /// its vertices, too few points per control vertex to determine their positions.
   FitOptions fit = [] {
     FitOptions f;
     f.control_fit_iterations = 0;
+    f.displacement.density = 2.2;
+    f.displacement.smoothing = 0.0;
     return f;
   }();
   /// Control vertices per component = welded vertices * vertex_ratio, at least

@@ -19,9 +19,12 @@ struct DisplacementFitOptions {
   /// Levels per chart: the finest lattice has about `density` * sqrt(samples) cells per side
   /// (fitting.md section 6), so the lattice spacing follows the local point spacing. 0 gives
   /// every chart `max_levels`.
-  double density = 1.2;
-  /// BA passes at each chart's finest level (FitMultilevelBspline()), >= 1.
-  int finest_passes = 6;
+  double density = 1.0;
+  /// BA passes at each chart's finest level (MbaOptions::finest_passes), >= 1.
+  int finest_passes = 1;
+  /// Thin-plate weight of the finest level's smoothing spline (MbaOptions::smoothing); 0:
+  /// plain MBA. See docs/fitting.md for how 5e-4 was chosen.
+  double smoothing = 5e-4;
   int threads = 0;  ///< 0: hardware concurrency.
 };
 
