@@ -157,16 +157,7 @@ int main(int argc, char** argv) {
     {
       // Surface to data: the level-8 tessellation against the input triangles.
       TriangleDistanceTree data_tree;
-      std::vector<std::uint32_t> tris;
-      for (Index f = 0; f < mesh.num_faces(); ++f) {
-        const Index o = mesh.face_offsets[f];
-        for (Index k = 1; k + 1 < mesh.face_size(f); ++k) {
-          tris.insert(tris.end(), {static_cast<std::uint32_t>(mesh.face_vertices[o]),
-                                   static_cast<std::uint32_t>(mesh.face_vertices[o + k]),
-                                   static_cast<std::uint32_t>(mesh.face_vertices[o + k + 1])});
-        }
-      }
-      data_tree.Build(mesh.positions, tris);
+      data_tree.Build(mesh.positions, TriangulateFan(mesh));
       TessellationPattern pat;
       TessellationPattern::Build(domain.topology(), 8, &pat);
       std::vector<Vec3> xs(pat.samples.size());

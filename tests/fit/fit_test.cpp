@@ -11,6 +11,7 @@
 #include "dermis/offline/point_input.h"
 #include "dermis/offline/surface_fit.h"
 #include "dermis/offline/surface_projection.h"
+#include "dermis/offline/triangle_distance.h"
 #include "dermis/surface/dsurf.h"
 #include "dermis/surface/surface_evaluator.h"
 #include "dermis/surface/tessellation.h"
@@ -325,4 +326,23 @@ TEST_CASE("fit: the Stanford bunny with 540 control vertices") {
   CHECK(report.error.holdout_mean <= 3.0 * report.error.mean);
   CHECK(report.error.unoptimized_mean > 5.0 * report.error.mean);
   CHECK(report.points_outside < 100);
+  CHECK(report.control_fit_rounds == 2);
+  // Independently: the fitted points against the level-16 tessellation (exact
+  // point-to-triangle distances) are within the reported E1 on average.
+  TessellationPattern pattern;
+  REQUIRE(TessellationPattern::Build(fitted.surface.domain->topology(), 16, &pattern).ok());
+  std::vector<Vec3> x(pattern.samples.size());
+  REQUIRE(EvaluateSamples(*fitted.surface.domain, fitted.surface.patches.data(),
+                          fitted.displacement.get(), pattern.samples.data(), x.size(), x.data(),
+                          nullptr));
+  TriangleDistanceTree tree;
+  tree.Build(x, pattern.triangles);
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < input.points.size(); ++i) {
+    if (IsHeldOut(i, options.holdout, options.holdout_seed)) continue;
+    sum += tree.Query(input.points[i]).distance / report.scale, ++n;
+  }
+  INFO("level-16 tessellation: mean " << sum / static_cast<double>(n));
+  CHECK(sum / static_cast<double>(n) <= report.error.mean);
 }

@@ -66,6 +66,7 @@ nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   j["points_not_converged"] = r.points_not_converged;
   j["control_vertices"] = r.control_vertices;
   j["control_faces"] = r.control_faces;
+  j["control_fit_rounds"] = r.control_fit_rounds;
   j["coefficients"] = r.coefficients;
   j["finest_coefficients"] = r.finest_coefficients;
   j["levels"] = r.max_levels;

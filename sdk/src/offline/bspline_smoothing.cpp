@@ -68,16 +68,15 @@ struct SmoothingOperator {
           const double d = 2.0 * lam * (x[p] - x[p + 1] - x[p + stride] + x[p + stride + 1]);
           out[p] += d, out[p + 1] -= d, out[p + stride] -= d, out[p + stride + 1] += d;
         }
-        if (tension > 0.0) {  // membrane energy in the gaps
-          if (i + 1 < s) {
-            const double d = tension * lam * 0.5 * (gap[p] + gap[p + 1]) * (x[p + 1] - x[p]);
-            out[p + 1] += d, out[p] -= d;
-          }
-          if (j + 1 < s) {
-            const double d =
-                tension * lam * 0.5 * (gap[p] + gap[p + stride]) * (x[p + stride] - x[p]);
-            out[p + stride] += d, out[p] -= d;
-          }
+        // Membrane energy in the gaps.
+        if (i + 1 < s) {
+          const double d = tension * lam * 0.5 * (gap[p] + gap[p + 1]) * (x[p + 1] - x[p]);
+          out[p + 1] += d, out[p] -= d;
+        }
+        if (j + 1 < s) {
+          const double d =
+              tension * lam * 0.5 * (gap[p] + gap[p + stride]) * (x[p + stride] - x[p]);
+          out[p + stride] += d, out[p] -= d;
         }
         out[p] += kRidge * lam * x[p];
       }
@@ -138,7 +137,7 @@ void SmoothBsplineFit(const Vec2* z, const double* r, std::size_t count, double 
   SmoothingOperator op;
   op.s = s;
   op.lambda = smoothing * static_cast<double>(count) / static_cast<double>(n);
-  op.tension = tension;
+  op.tension = std::max(tension, 0.0);
   op.base.resize(count);
   op.w.resize(16 * count);
   std::vector<double> b(n, 0.0);

@@ -14,6 +14,7 @@
 #include "dermis/offline/parallel.h"
 #include "dermis/surface/blend.h"
 #include "dermis/surface/chart.h"
+#include "dermis/surface/surface_evaluator.h"
 
 namespace dermis {
 namespace {
@@ -43,10 +44,7 @@ void AppendPatchStencil(const ManifoldDomain& domain, Index v, Vec2 z, double we
 
 bool DomainSurfaceStencil(const ManifoldDomain& domain, Index face, Vec2 uv,
                           std::vector<std::pair<Index, double>>* out) {
-  if (face < 0 || face >= domain.num_faces()) return false;
-  const double tol = 1e-12;
-  if (!(uv.x >= -tol && uv.x <= 1.0 + tol && uv.y >= -tol && uv.y <= 1.0 + tol)) return false;
-  uv = glm::clamp(uv, Vec2(0.0), Vec2(1.0));
+  if (!ClampFaceCoordinates(domain, face, &uv)) return false;
   const MeshTopology& topo = domain.topology();
   const Index base = topo.face_offset(face);
   const double lb = domain.options().blend_lb;
@@ -94,8 +92,6 @@ Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>
     }
   }
   // Residuals at the current positions, for the robust weights.
-  std::vector<LocalPatch> patches(static_cast<std::size_t>(nv));
-  domain.FitPatches(positions->data(), patches.data());
   const int threads = ResolveThreadCount(options.threads);
   std::vector<double> residual(order.size(), 0.0);
   ParallelFor(threads, order.size(), [&](std::size_t b, std::size_t e) {
@@ -115,7 +111,13 @@ Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>
     std::vector<double> sorted = residual;
     std::nth_element(sorted.begin(),
                      sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-    cutoff = options.robust_cutoff * std::max(sorted[sorted.size() / 2], 1e-300);
+    // A floor relative to the data's size: data already on the surface (median ~ 0) must not
+    // down-weight every other point to nothing.
+    Vec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    for (const Vec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const Vec3 ext = hi - lo;
+    const double size = std::max(ext.x, std::max(ext.y, ext.z));
+    cutoff = options.robust_cutoff * std::max(sorted[sorted.size() / 2], 1e-9 * size);
   }
   // Per face: the distinct vertices of its stencils, a dense normal-equation block and the
   // right-hand sides, accumulated over the face's points in order (parallel over faces).
@@ -168,9 +170,10 @@ Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>
       }
     }
   });
-  // Global assembly in face order.
+  // Global assembly in face order; the diagonal's data weight summed in the same order.
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv, 3);
+  std::vector<double> diagonal(static_cast<std::size_t>(nv), 0.0);
   for (const FaceBlock& blk : blocks) {
     const std::size_t m = blk.vertices.size();
     for (std::size_t i = 0; i < m; ++i) {
@@ -178,25 +181,27 @@ Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>
         const double a = blk.ata[i * m + j];
         if (a != 0.0) triplets.emplace_back(blk.vertices[i], blk.vertices[j], a);
       }
-      for (int c = 0; c < 3; ++c)
+      diagonal[static_cast<std::size_t>(blk.vertices[i])] += blk.ata[i * m + i];
+      for (int c = 0; c < 3; ++c) {
         rhs(blk.vertices[i], c) += blk.atb[3 * i + static_cast<std::size_t>(c)];
+      }
     }
   }
-  Eigen::SparseMatrix<double> ata(nv, nv);
-  ata.setFromTriplets(triplets.begin(), triplets.end());
   // Damping towards the current positions, proportional to each vertex's data weight.
   double mean_diag = 0.0;
-  for (Index v = 0; v < nv; ++v) mean_diag += ata.coeff(v, v);
-  mean_diag = nv > 0 ? mean_diag / nv : 1.0;
+  for (double d : diagonal) mean_diag += d;
+  mean_diag = nv > 0 ? mean_diag / nv : 0.0;
   if (!(mean_diag > 0.0)) return Status::InvalidInput("control fit: no data on the surface");
   for (Index v = 0; v < nv; ++v) {
-    const double d = ata.coeff(v, v);
     // A floor of a hundredth of the mean keeps vertices with little data well conditioned.
-    const double mu = std::max(options.damping * d, 0.01 * mean_diag);
-    ata.coeffRef(v, v) += mu;
+    const double mu =
+        std::max(options.damping * diagonal[static_cast<std::size_t>(v)], 0.01 * mean_diag);
+    triplets.emplace_back(v, v, mu);
     const Vec3& x = (*positions)[v];
     rhs(v, 0) += mu * x.x, rhs(v, 1) += mu * x.y, rhs(v, 2) += mu * x.z;
   }
+  Eigen::SparseMatrix<double> ata(nv, nv);
+  ata.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(ata);
   if (solver.info() != Eigen::Success) {
     return Status::InvalidInput("control fit: the normal equations could not be factored");

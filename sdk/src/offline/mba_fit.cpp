@@ -71,6 +71,7 @@ void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count
                           std::vector<double>* residuals, const MbaOptions& options) {
   std::vector<double> r(values, values + count);
   std::vector<double> delta, omega, phi, merged, refined;
+  std::vector<double> finest_r, finest_sum;  // residual entering the finest level, its passes
   if (num_levels <= 0) {
     if (residuals) *residuals = std::move(r);
     return;
@@ -83,6 +84,10 @@ void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count
     const int m = 1 << level;
     const int stride = m + 3;
     const std::size_t size = static_cast<std::size_t>(stride) * stride;
+    if (pass == num_levels - 1) {
+      finest_r = r;
+      finest_sum.assign(size, 0.0);
+    }
     delta.assign(size, 0.0);
     omega.assign(size, 0.0);
     // BA: each point's minimum-norm wish phi_c = w_kl r / sum w^2, averaged with weights w^2.
@@ -109,10 +114,14 @@ void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count
     for (std::size_t n = 0; n < size; ++n) {
       if (omega[n] > 0.0) phi[n] = delta[n] / omega[n];
     }
-    // The finest level's last pass: the smoothing spline, from the BA solution.
+    // After the finest level's last pass, its whole correction (every pass) is re-solved as
+    // the smoothing spline of the residual that entered the level, from the passes' sum.
     if (pass == passes - 1 && options.smoothing > 0.0) {
-      SmoothBsplineFit(z, r.data(), count, half_extent, m, options.smoothing, options.tension,
-                       options.smoothing_iterations, &phi);
+      std::vector<double> total(size);
+      for (std::size_t n = 0; n < size; ++n) total[n] = finest_sum[n] + phi[n];
+      SmoothBsplineFit(z, finest_r.data(), count, half_extent, m, options.smoothing,
+                       options.tension, options.smoothing_iterations, &total);
+      for (std::size_t n = 0; n < size; ++n) phi[n] = total[n] - finest_sum[n];
     }
     // Residuals of this level's function.
     for (std::size_t c = 0; c < count; ++c) {
@@ -125,6 +134,9 @@ void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count
         f += bt[l] * (bs[0] * row[0] + bs[1] * row[1] + bs[2] * row[2] + bs[3] * row[3]);
       }
       r[c] -= f;
+    }
+    if (pass >= num_levels - 1) {
+      for (std::size_t n = 0; n < size; ++n) finest_sum[n] += phi[n];
     }
     // Psi_k = R(Psi_{k-1}) + Phi_k; a repeated pass adds to Psi_k itself.
     if (pass == 0) {

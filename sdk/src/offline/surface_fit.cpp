@@ -142,12 +142,14 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     std::vector<Vec3> x = fitted.surface.control.positions;
     for (int it = 0; it < options.control_fit_iterations; ++it) {
       FitPoints(fitted.surface, fit_points, pf, &fits);
-      s = FitControlPositions(domain, fit_points, fits, cf, &x);
-      if (!s.ok()) return s.WithContext(where);
+      // A round that cannot be solved (no usable data) leaves the positions of the last one.
+      if (!FitControlPositions(domain, fit_points, fits, cf, &x).ok()) break;
       fitted.surface.control.positions = x;
       domain.FitPatches(x.data(), fitted.surface.patches.data());
+      ++rep.control_fit_rounds;
     }
-    if (fitted.control_mesh.positions.size() == x.size()) fitted.control_mesh.positions = x;
+    // A built control mesh is all quads, so its vertices are the quad mesh's.
+    fitted.control_mesh.positions = fitted.surface.control.positions;
   }
   rep.seconds.control_mesh = SecondsSince(t0);
 

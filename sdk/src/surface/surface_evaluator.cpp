@@ -29,12 +29,17 @@ void EvaluateChartSurface(const LocalPatch& patch, const Displacement* displacem
   *dy = f.py + g.y * f.n + d * f.ny;
 }
 
-bool EvaluateSurface(const ManifoldDomain& domain, const LocalPatch* patches,
-                     const Displacement* displacement, Index face, Vec2 uv, SurfacePoint* out) {
+bool ClampFaceCoordinates(const ManifoldDomain& domain, Index face, Vec2* uv) {
   if (face < 0 || face >= domain.num_faces()) return false;
   const double tol = 1e-12;
-  if (!(uv.x >= -tol && uv.x <= 1.0 + tol && uv.y >= -tol && uv.y <= 1.0 + tol)) return false;
-  uv = glm::clamp(uv, Vec2(0.0), Vec2(1.0));
+  if (!(uv->x >= -tol && uv->x <= 1.0 + tol && uv->y >= -tol && uv->y <= 1.0 + tol)) return false;
+  *uv = glm::clamp(*uv, Vec2(0.0), Vec2(1.0));
+  return true;
+}
+
+bool EvaluateSurface(const ManifoldDomain& domain, const LocalPatch* patches,
+                     const Displacement* displacement, Index face, Vec2 uv, SurfacePoint* out) {
+  if (!ClampFaceCoordinates(domain, face, &uv)) return false;
   const MeshTopology& topo = domain.topology();
   const Index base = topo.face_offset(face);
   const double lb = domain.options().blend_lb;

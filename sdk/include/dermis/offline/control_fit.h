@@ -37,8 +37,9 @@ struct ControlFitOptions {
   /// the reprojected parameters stay valid; at least a hundredth of the mean diagonal, so a
   /// vertex with little or no data stays (nearly) where it is.
   double damping = 0.05;
-  /// Residuals above this multiple of the median residual get a weight that decays as
-  /// (cutoff / r)^2 (a Cauchy-like robust loss against misprojected points).
+  /// Residuals above this multiple of the median residual (at least 1e-9 of the data's size)
+  /// get a weight that decays as (cutoff / r)^2 (a Cauchy-like robust loss against
+  /// misprojected points); <= 0 turns the robust weights off.
   double robust_cutoff = 8.0;
   int threads = 0;  ///< 0: hardware concurrency. Results do not depend on it.
 };

@@ -17,11 +17,12 @@ struct MbaOptions {
   /// to the same lattice: BA is only an approximate projection where points share control
   /// nodes, and repeated passes converge towards the fit at that lattice spacing.
   int finest_passes = 1;
-  /// > 0: after the passes, the finest level's correction is re-solved as a smoothing spline
-  /// (SmoothBsplineFit(), dermis/offline/bspline_smoothing.h) with this weight, started from
-  /// the BA solution. 0: plain MBA.
+  /// > 0: after the passes, the finest level's whole correction (the sum of its passes) is
+  /// re-solved as the smoothing spline (SmoothBsplineFit(), dermis/offline/bspline_smoothing.h)
+  /// of the residual that entered the level, with this weight, started from that sum. 0: plain
+  /// MBA.
   double smoothing = 0.0;
-  double tension = 10.0;          ///< Membrane weight in the data's gaps (SmoothBsplineFit()).
+  double tension = 10.0;  ///< Membrane weight in the data's gaps (SmoothBsplineFit()), >= 0.
   int smoothing_iterations = 40;  ///< Conjugate-gradient steps at most.
 };
 

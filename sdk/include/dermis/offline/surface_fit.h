@@ -33,7 +33,7 @@ struct FitOptions {
   /// Rounds of projection + control-vertex least squares (control_fit.h) applied to a control
   /// mesh built from the data (never to a given one); 0 keeps the simplified positions. Skipped
   /// where the data is too sparse to determine the positions: fewer than
-  /// control_fit_min_points_per_vertex fitted points per control vertex.
+  /// control_fit_min_points_per_vertex points (not held out) per control vertex.
   int control_fit_iterations = 2;
   double control_fit_min_points_per_vertex = 16.0;
   ControlFitOptions control_fit;
@@ -73,7 +73,7 @@ struct FitErrors {
 
 /// Wall-clock seconds per stage.
 struct FitSeconds {
-  double control_mesh = 0.0;             ///< Building the control mesh, domain and patches.
+  double control_mesh = 0.0;  ///< Building the control mesh, domain, patches, control fit.
   double projection_optimization = 0.0;  ///< FitPoints() on the fitted points.
   double displacement = 0.0;             ///< MBA of every chart.
   double total = 0.0;                    ///< The three above plus bookkeeping.
@@ -89,6 +89,7 @@ struct FitReport {
   std::int64_t points_outside = 0;        ///< Left every chart in projection (not fitted).
   std::int64_t points_not_converged = 0;  ///< Fitted from their projection only (folds).
   std::int64_t control_vertices = 0, control_faces = 0;
+  std::int64_t control_fit_rounds = 0;   ///< Control-vertex fit rounds done (FitOptions).
   std::int64_t coefficients = 0;         ///< Stored displacement coefficients, all levels.
   std::int64_t finest_coefficients = 0;  ///< Those of each chart's finest level only.
   int max_levels = 0;                    ///< Levels of the deepest chart.

@@ -30,6 +30,10 @@ struct SurfacePoint {
   int chart_corner = 0;                ///< Its corner index in the face.
 };
 
+/// Checks that `face` is a face of the domain and that uv lies in [0,1]^2 (within 1e-12, then
+/// clamped onto it): the parameters EvaluateSurface() accepts.
+bool ClampFaceCoordinates(const ManifoldDomain& domain, Index face, Vec2* uv);
+
 /// Evaluates the surface at face coordinates uv in [0,1]^2 of `face`.
 /// \param patches       ManifoldDomain::num_vertices() patches fitted by FitPatches().
 /// \param displacement  the scalar displacement per chart, or null for the domain surface.
