@@ -42,6 +42,35 @@ double Eval(const std::vector<double>& phi, Vec2 z, double r, int m) {
   return f;
 }
 
+// Adds lambda times the penalties of SmoothBsplineFit()'s objective to the dense normal
+// matrix of an s x s lattice: the thin plate, the membrane weighted by the per-node gap weights
+// (none when `gap` is empty) and the 1e-6 ridge.
+void AddPenalties(int s, double lambda, double tension, const std::vector<double>& gap,
+                  Eigen::MatrixXd* a) {
+  const int n = s * s;
+  auto add = [&](std::initializer_list<std::pair<int, double>> terms, double w) {
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
+    for (const auto& [k, c] : terms) d[k] += c;
+    *a += lambda * w * d * d.transpose();
+  };
+  auto g = [&](int k) { return gap[static_cast<std::size_t>(k)]; };
+  for (int j = 0; j < s; ++j) {
+    for (int i = 0; i < s; ++i) {
+      const int p = j * s + i;
+      if (i >= 1 && i + 1 < s) add({{p - 1, 1.0}, {p, -2.0}, {p + 1, 1.0}}, 1.0);
+      if (j >= 1 && j + 1 < s) add({{p - s, 1.0}, {p, -2.0}, {p + s, 1.0}}, 1.0);
+      if (i + 1 < s && j + 1 < s) {
+        add({{p, 1.0}, {p + 1, -1.0}, {p + s, -1.0}, {p + s + 1, 1.0}}, 2.0);
+      }
+      if (!gap.empty() && i + 1 < s)
+        add({{p, -1.0}, {p + 1, 1.0}}, tension * 0.5 * (g(p) + g(p + 1)));
+      if (!gap.empty() && j + 1 < s)
+        add({{p, -1.0}, {p + s, 1.0}}, tension * 0.5 * (g(p) + g(p + s)));
+      (*a)(p, p) += 1e-6 * lambda;
+    }
+  }
+}
+
 }  // namespace
 
 TEST_CASE("smoothing spline: matches the dense solution of its objective") {
@@ -72,22 +101,7 @@ TEST_CASE("smoothing spline: matches the dense solution of its objective") {
     a += row * row.transpose();
     b += row * values[c];
   }
-  auto add_difference = [&](std::initializer_list<std::pair<int, double>> terms, double w) {
-    Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
-    for (const auto& [k, c] : terms) d[k] += c;
-    a += lambda * w * d * d.transpose();
-  };
-  for (int j = 0; j < s; ++j) {
-    for (int i = 0; i < s; ++i) {
-      const int p = j * s + i;
-      if (i >= 1 && i + 1 < s) add_difference({{p - 1, 1.0}, {p, -2.0}, {p + 1, 1.0}}, 1.0);
-      if (j >= 1 && j + 1 < s) add_difference({{p - s, 1.0}, {p, -2.0}, {p + s, 1.0}}, 1.0);
-      if (i + 1 < s && j + 1 < s) {
-        add_difference({{p, 1.0}, {p + 1, -1.0}, {p + s, -1.0}, {p + s + 1, 1.0}}, 2.0);
-      }
-      a(p, p) += 1e-6 * lambda;
-    }
-  }
+  AddPenalties(s, lambda, 0.0, {}, &a);
   const Eigen::VectorXd expected = a.ldlt().solve(b);
   double worst = 0.0, scale = 0.0;
   for (int k = 0; k < n; ++k) {
@@ -143,25 +157,13 @@ TEST_CASE("smoothing spline: membrane, start and unknown nodes match the stated 
     if (active[static_cast<std::size_t>(k)]) mean += omega[static_cast<std::size_t>(k)], ++count;
   }
   mean /= count;
-  auto gap = [&](int k) { return 0.1 * mean / (0.1 * mean + omega[static_cast<std::size_t>(k)]); };
+  std::vector<double> gap(static_cast<std::size_t>(n));
+  for (std::size_t k = 0; k < gap.size(); ++k) gap[k] = 0.1 * mean / (0.1 * mean + omega[k]);
   const double lambda = smoothing * static_cast<double>(z.size()) / n;
-  auto add = [&](std::initializer_list<std::pair<int, double>> terms, double w) {
-    Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
-    for (const auto& [k, c] : terms) d[k] += c;
-    a += lambda * w * d * d.transpose();
-  };
-  for (int j = 0; j < s; ++j) {
-    for (int i = 0; i < s; ++i) {
-      const int p = j * s + i;
-      if (i >= 1 && i + 1 < s) add({{p - 1, 1.0}, {p, -2.0}, {p + 1, 1.0}}, 1.0);
-      if (j >= 1 && j + 1 < s) add({{p - s, 1.0}, {p, -2.0}, {p + s, 1.0}}, 1.0);
-      if (i + 1 < s && j + 1 < s)
-        add({{p, 1.0}, {p + 1, -1.0}, {p + s, -1.0}, {p + s + 1, 1.0}}, 2.0);
-      if (i + 1 < s) add({{p, -1.0}, {p + 1, 1.0}}, tension * 0.5 * (gap(p) + gap(p + 1)));
-      if (j + 1 < s) add({{p, -1.0}, {p + s, 1.0}}, tension * 0.5 * (gap(p) + gap(p + s)));
-      a(p, p) += 1e-6 * lambda;
-      if (active[static_cast<std::size_t>(p)])
-        b[p] += 1e-6 * lambda * start[static_cast<std::size_t>(p)];
+  AddPenalties(s, lambda, tension, gap, &a);
+  for (int k = 0; k < n; ++k) {
+    if (active[static_cast<std::size_t>(k)]) {
+      b[k] += 1e-6 * lambda * start[static_cast<std::size_t>(k)];
     }
   }
   std::vector<int> ids;
