@@ -19,11 +19,131 @@
 #include "dermis/offline/surface_fit.h"
 #include "dermis/offline/surface_projection.h"
 #include "dermis/offline/triangle_distance.h"
+#include "dermis/surface/chart.h"
 #include "dermis/surface/dsurf.h"
 #include "dermis/surface/surface_evaluator.h"
 #include "dermis/surface/tessellation.h"
 
 using namespace dermis;
+
+namespace {
+
+// Distances from the points to the fitted surface tessellated at `level` (exact
+// point-to-triangle distances), divided by `scale`.
+std::vector<double> DistancesToTessellation(const FittedSurface& fitted, int level,
+                                            const std::vector<Vec3>& points, double scale) {
+  TessellationPattern pattern;
+  TessellationPattern::Build(fitted.surface.domain->topology(), level, &pattern);
+  std::vector<Vec3> x(pattern.samples.size());
+  EvaluateSamples(*fitted.surface.domain, fitted.surface.patches.data(), fitted.displacement.get(),
+                  pattern.samples.data(), x.size(), x.data(), nullptr);
+  TriangleDistanceTree tree;
+  tree.Build(x, pattern.triangles);
+  std::vector<double> d(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) d[i] = tree.Query(points[i]).distance / scale;
+  return d;
+}
+
+void PrintQuantiles(std::vector<double> v, const char* name) {
+  std::sort(v.begin(), v.end());
+  auto q = [&](double f) {
+    return v[static_cast<std::size_t>(f * static_cast<double>(v.size() - 1))];
+  };
+  std::printf(
+      "detail: %s quantiles 10%% %.3g, 50%% %.3g, 90%% %.3g, 99%% %.3g, 99.9%% %.3g, max %.3g\n",
+      name, q(0.1), q(0.5), q(0.9), q(0.99), q(0.999), v.back());
+}
+
+// --detail: where the errors come from. `tess` holds the level-16 distance of each fitted point.
+void PrintDetail(const FittedSurface& fitted, const PolygonMesh& mesh,
+                 const std::vector<Vec3>& fit_points, const std::vector<double>& tess,
+                 double scale) {
+  const ManifoldDomain& domain = *fitted.surface.domain;
+  const LocalPatch* patches = fitted.surface.patches.data();
+  const Displacement* disp = fitted.displacement.get();
+  const double count = static_cast<double>(fit_points.size());
+  // Per status: E1 at the fitted parameter, true closest distance and level-16 distance; for
+  // optimised points, the level-16 excess over the true distance by dominant-corner valence
+  // and by distance to the face's edge.
+  double se[3] = {0, 0, 0}, sc[3] = {0, 0, 0}, st[3] = {0, 0, 0}, cnt[3] = {0, 0, 0};
+  double ex[16] = {0}, nx[16] = {0}, ebin[5] = {0}, nbin[5] = {0};
+  std::vector<double> excess, e1s;
+  for (std::size_t i = 0; i < fit_points.size(); ++i) {
+    const PointFit& f = fitted.point_fits[i];
+    const int k = static_cast<int>(f.status);
+    st[k] += tess[i], cnt[k] += 1;
+    if (f.status == PointFitStatus::kOutside) continue;
+    SurfacePoint sp;
+    EvaluateSurface(domain, patches, disp, f.face, f.uv, &sp);
+    const double e = glm::length(sp.position - fit_points[i]) / scale;
+    Index face = f.face;
+    Vec2 uv = f.uv;
+    const double c =
+        ClosestPointOnSurface(domain, patches, disp, fit_points[i], &face, &uv) / scale;
+    se[k] += e, sc[k] += c;
+    if (f.status != PointFitStatus::kOptimized) continue;
+    excess.push_back(tess[i] - c), e1s.push_back(e);
+    const Index v = domain.topology().face_vertex(f.face, DominantCorner(f.uv));
+    const int val = std::min(domain.topology().valence(v), 15);
+    ex[val] += tess[i] - c, nx[val] += 1;
+    const double edge = std::min(std::min(f.uv.x, 1.0 - f.uv.x), std::min(f.uv.y, 1.0 - f.uv.y));
+    const int bin = std::min(4, static_cast<int>(edge / 0.1));
+    ebin[bin] += tess[i] - c, nbin[bin] += 1;
+  }
+  const char* names[3] = {"optimized", "not converged", "outside"};
+  for (int k = 0; k < 3; ++k) {
+    std::printf(
+        "detail: %-13s %6.0f points: sum E1 %.4g, sum closest %.4g, sum tess %.4g "
+        "(per fitted point: %.3g / %.3g / %.3g)\n",
+        names[k], cnt[k], se[k], sc[k], st[k], se[k] / (cnt[0] + cnt[1]), sc[k] / (cnt[0] + cnt[1]),
+        st[k] / (cnt[0] + cnt[1]));
+  }
+  PrintQuantiles(e1s, "optimized E1");
+  PrintQuantiles(excess, "optimized tess - closest");
+  for (int k = 0; k < 16; ++k) {
+    if (nx[k] > 0) {
+      std::printf("detail: valence %d: %.0f points, mean tess excess %.3g\n", k, nx[k],
+                  ex[k] / nx[k]);
+    }
+  }
+  for (int b = 0; b < 5; ++b) {
+    std::printf(
+        "detail: distance to face edge %.1f..%.1f: %.0f points, mean tess excess %.3g, share of "
+        "mean %.3g\n",
+        0.1 * b, 0.1 * b + 0.1, nbin[b], ebin[b] / nbin[b], ebin[b] / count);
+  }
+  // Share of the means carried by the points above each threshold.
+  for (double t : {1e-4, 3e-4, 1e-3, 3e-3}) {
+    double st_hi = 0, se_hi = 0, n_hi = 0;
+    for (double v : tess) {
+      if (v > t) st_hi += v, n_hi += 1;
+    }
+    for (double v : e1s) {
+      if (v > t) se_hi += v;
+    }
+    std::printf(
+        "detail: above %.0e: tess %.0f points carry %.3g of the mean; optimized E1 above it "
+        "carries %.3g\n",
+        t, n_hi, st_hi / count, se_hi / count);
+  }
+  // Finer tessellations, and the surface (level 8) against the input triangles.
+  for (int level : {32, 64}) {
+    double sm = 0.0;
+    for (double d : DistancesToTessellation(fitted, level, fit_points, scale)) sm += d;
+    std::printf("detail: level %d tessellation: mean %.3g\n", level, sm / count);
+  }
+  TriangleDistanceTree data_tree;
+  data_tree.Build(mesh.positions, TriangulateFan(mesh));
+  TessellationPattern pattern;
+  TessellationPattern::Build(domain.topology(), 8, &pattern);
+  std::vector<Vec3> xs(pattern.samples.size());
+  EvaluateSamples(domain, patches, disp, pattern.samples.data(), xs.size(), xs.data(), nullptr);
+  std::vector<double> sd;
+  for (const Vec3& p : xs) sd.push_back(data_tree.Query(p).distance / scale);
+  PrintQuantiles(sd, "surface -> data (level 8)");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   std::string path = "../shared/data/scans/stanford-bunny.obj";
@@ -90,145 +210,15 @@ int main(int argc, char** argv) {
   bytes_default = SerializeDsurf(*fitted.surface.domain, fitted.surface.control.positions.data(),
                                  fitted.displacement.get());
   // Independent check: fitted (not held-out) points against the level-16 tessellation.
-  TessellationPattern pattern;
-  TessellationPattern::Build(fitted.surface.domain->topology(), 16, &pattern);
-  std::vector<Vec3> x(pattern.samples.size());
-  EvaluateSamples(*fitted.surface.domain, fitted.surface.patches.data(), fitted.displacement.get(),
-                  pattern.samples.data(), x.size(), x.data(), nullptr);
-  TriangleDistanceTree tree;
-  tree.Build(x, pattern.triangles);
-  double sum = 0.0, mx = 0.0;
-  std::size_t n = 0;
+  std::vector<Vec3> fit_points;
   for (std::size_t i = 0; i < input.points.size(); ++i) {
-    if (IsHeldOut(i, options.holdout, options.holdout_seed)) continue;
-    const double d = tree.Query(input.points[i]).distance / report.scale;
-    sum += d, mx = std::max(mx, d), ++n;
+    if (!IsHeldOut(i, options.holdout, options.holdout_seed)) fit_points.push_back(input.points[i]);
   }
-  if (detail) {
-    // Per status: mean E1 at the fitted parameter, true closest distance, and the distance to
-    // the level-16 tessellation, with quantiles of the tessellation excess.
-    const ManifoldDomain& domain = *fitted.surface.domain;
-    std::vector<Vec3> fit_points;
-    for (std::size_t i = 0; i < input.points.size(); ++i) {
-      if (!IsHeldOut(i, options.holdout, options.holdout_seed))
-        fit_points.push_back(input.points[i]);
-    }
-    double se[3] = {0, 0, 0}, sc[3] = {0, 0, 0}, st[3] = {0, 0, 0}, cnt[3] = {0, 0, 0};
-    std::vector<double> excess, e1s;
-    for (std::size_t i = 0; i < fit_points.size(); ++i) {
-      const PointFit& f = fitted.point_fits[i];
-      const int k = static_cast<int>(f.status);
-      const double dt = tree.Query(fit_points[i]).distance / report.scale;
-      st[k] += dt, cnt[k] += 1;
-      if (f.status == PointFitStatus::kOutside) continue;
-      SurfacePoint sp;
-      EvaluateSurface(domain, fitted.surface.patches.data(), fitted.displacement.get(), f.face,
-                      f.uv, &sp);
-      const double e =
-          std::sqrt(glm::dot(sp.position - fit_points[i], sp.position - fit_points[i])) /
-          report.scale;
-      Index face = f.face;
-      Vec2 uv = f.uv;
-      const double c = ClosestPointOnSurface(domain, fitted.surface.patches.data(),
-                                             fitted.displacement.get(), fit_points[i], &face, &uv) /
-                       report.scale;
-      se[k] += e, sc[k] += c;
-      if (k == 0) excess.push_back(dt - c), e1s.push_back(e);
-    }
-    const char* names[3] = {"optimized", "not converged", "outside"};
-    for (int k = 0; k < 3; ++k) {
-      std::printf(
-          "detail: %-13s %6.0f points: sum E1 %.4g, sum closest %.4g, sum tess %.4g "
-          "(per fitted point: %.3g / %.3g / %.3g)\n",
-          names[k], cnt[k], se[k], sc[k], st[k], se[k] / (cnt[0] + cnt[1]),
-          sc[k] / (cnt[0] + cnt[1]), st[k] / (cnt[0] + cnt[1]));
-    }
-    auto quantiles = [](std::vector<double> v, const char* name) {
-      std::sort(v.begin(), v.end());
-      auto q = [&](double f) {
-        return v[static_cast<std::size_t>(f * static_cast<double>(v.size() - 1))];
-      };
-      std::printf(
-          "detail: %s quantiles 10%% %.3g, 50%% %.3g, 90%% %.3g, 99%% %.3g, 99.9%% %.3g, max "
-          "%.3g\n",
-          name, q(0.1), q(0.5), q(0.9), q(0.99), q(0.999), v.back());
-    };
-    quantiles(e1s, "optimized E1");
-    {
-      // Surface to data: the level-8 tessellation against the input triangles.
-      TriangleDistanceTree data_tree;
-      data_tree.Build(mesh.positions, TriangulateFan(mesh));
-      TessellationPattern pat;
-      TessellationPattern::Build(domain.topology(), 8, &pat);
-      std::vector<Vec3> xs(pat.samples.size());
-      EvaluateSamples(domain, fitted.surface.patches.data(), fitted.displacement.get(),
-                      pat.samples.data(), xs.size(), xs.data(), nullptr);
-      std::vector<double> sd;
-      for (const Vec3& p : xs) sd.push_back(data_tree.Query(p).distance / report.scale);
-      quantiles(sd, "surface -> data (level 8)");
-    }
-    {
-      // Excess of the tessellation distance over the true distance, by the valence of the
-      // dominant corner, and the check at finer levels.
-      double ex[16] = {0}, nx[16] = {0}, ebin[5] = {0}, nbin[5] = {0};
-      std::size_t j = 0;
-      for (std::size_t i = 0; i < fit_points.size(); ++i) {
-        const PointFit& f = fitted.point_fits[i];
-        if (f.status != PointFitStatus::kOptimized) continue;
-        const int corner = (f.uv.x > 0.5 ? 1 : 0) + (f.uv.y > 0.5 ? (f.uv.x > 0.5 ? 1 : 3) : 0);
-        const Index v = domain.topology().face_vertex(f.face, corner);
-        const int val = std::min(domain.topology().valence(v), 15);
-        ex[val] += excess[j], nx[val] += 1;
-        const double edge =
-            std::min(std::min(f.uv.x, 1.0 - f.uv.x), std::min(f.uv.y, 1.0 - f.uv.y));
-        const int bin = std::min(4, static_cast<int>(edge / 0.1));
-        ebin[bin] += excess[j++], nbin[bin] += 1;
-      }
-      for (int k = 0; k < 16; ++k)
-        if (nx[k] > 0)
-          std::printf("detail: valence %d: %.0f points, mean tess excess %.3g\n", k, nx[k],
-                      ex[k] / nx[k]);
-      for (int b = 0; b < 5; ++b)
-        std::printf(
-            "detail: distance to face edge %.1f..%.1f: %.0f points, mean tess excess %.3g, share "
-            "of mean %.3g\n",
-            0.1 * b, 0.1 * b + 0.1, nbin[b], ebin[b] / nbin[b],
-            ebin[b] / static_cast<double>(fit_points.size()));
-      for (int level : {32, 64}) {
-        TessellationPattern pat;
-        TessellationPattern::Build(domain.topology(), level, &pat);
-        std::vector<Vec3> xs(pat.samples.size());
-        EvaluateSamples(domain, fitted.surface.patches.data(), fitted.displacement.get(),
-                        pat.samples.data(), xs.size(), xs.data(), nullptr);
-        TriangleDistanceTree tr;
-        tr.Build(xs, pat.triangles);
-        double sm = 0;
-        for (const Vec3& p : fit_points) sm += tr.Query(p).distance / report.scale;
-        std::printf("detail: level %d tessellation: mean %.3g\n", level,
-                    sm / static_cast<double>(fit_points.size()));
-      }
-    }
-    {
-      // Share of the sums from points above each threshold.
-      std::vector<double> tess_all, e1_all;
-      for (std::size_t i = 0; i < fit_points.size(); ++i) {
-        tess_all.push_back(tree.Query(fit_points[i]).distance / report.scale);
-      }
-      for (double t : {1e-4, 3e-4, 1e-3, 3e-3}) {
-        double st_hi = 0, se_hi = 0, n_hi = 0;
-        for (double v : tess_all)
-          if (v > t) st_hi += v, n_hi += 1;
-        for (double v : e1s)
-          if (v > t) se_hi += v;
-        std::printf(
-            "detail: above %.0e: tess %.0f points carry %.3g of the mean; optimized E1 "
-            "above it carries %.3g\n",
-            t, n_hi, st_hi / static_cast<double>(fit_points.size()),
-            se_hi / static_cast<double>(fit_points.size()));
-      }
-    }
-    quantiles(excess, "optimized tess - closest");
-  }
+  const std::vector<double> tess = DistancesToTessellation(fitted, 16, fit_points, report.scale);
+  double sum = 0.0, mx = 0.0;
+  for (double d : tess) sum += d, mx = std::max(mx, d);
+  const std::size_t n = tess.size();
+  if (detail) PrintDetail(fitted, mesh, fit_points, tess, report.scale);
   // Determinism across thread counts.
   bool identical = true;
   for (int threads : {1, 2}) {
@@ -271,7 +261,8 @@ int main(int argc, char** argv) {
   std::printf(
       "independent check: %zu fitted points vs level-16 tessellation (%zu triangles): "
       "mean %.3g (reported E1 %.3g: %s), max %.3g\n",
-      n, pattern.triangles.size() / 3, sum / static_cast<double>(n), e.mean,
+      n, static_cast<std::size_t>(fitted.surface.domain->num_faces()) * 16 * 16 * 2,
+      sum / static_cast<double>(n), e.mean,
       sum / static_cast<double>(n) <= e.mean ? "within" : "ABOVE", mx);
   std::printf("threads 1 and 2 give identical .dsurf bytes (%zu bytes): %s\n", bytes_default.size(),
               identical ? "yes" : "NO");
