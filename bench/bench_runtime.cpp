@@ -36,9 +36,9 @@
 #include <vector>
 
 #include "dermis/asset/asset_pose.h"
-#include "dermis/offline/character_fit.h"
-#include "dermis/offline/point_input.h"
-#include "dermis/offline/surface_fit.h"
+#include "dermis/offline/character/character_fit.h"
+#include "dermis/offline/fit/surface_fit.h"
+#include "dermis/offline/io/point_input.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/runtime/evaluation_plan.h"
 #include "dermis/runtime/runtime.h"

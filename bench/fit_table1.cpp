@@ -15,12 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "dermis/offline/point_input.h"
-#include "dermis/offline/surface_fit.h"
-#include "dermis/offline/surface_projection.h"
-#include "dermis/offline/triangle_distance.h"
+#include "dermis/dsurf/dsurf.h"
+#include "dermis/offline/fit/surface_fit.h"
+#include "dermis/offline/fit/surface_projection.h"
+#include "dermis/offline/geometry/triangle_distance.h"
+#include "dermis/offline/io/point_input.h"
 #include "dermis/surface/chart.h"
-#include "dermis/surface/dsurf.h"
 #include "dermis/surface/surface_evaluator.h"
 #include "dermis/surface/tessellation.h"
 

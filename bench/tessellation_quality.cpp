@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "dermis/offline/builtin_meshes.h"
-#include "dermis/offline/domain_builder.h"
-#include "dermis/offline/mesh_metrics.h"
-#include "dermis/offline/obj_io.h"
+#include "dermis/offline/build/domain_builder.h"
+#include "dermis/offline/geometry/builtin_meshes.h"
+#include "dermis/offline/geometry/mesh_metrics.h"
+#include "dermis/offline/io/obj_io.h"
 #include "dermis/surface/tessellation.h"
 
 using namespace dermis;

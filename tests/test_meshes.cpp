@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 
-#include "dermis/offline/builtin_meshes.h"
-#include "dermis/offline/character_fit.h"
+#include "dermis/offline/character/character_fit.h"
+#include "dermis/offline/geometry/builtin_meshes.h"
 
 namespace dermis::test {
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "dermis/asset/asset.h"
-#include "dermis/offline/domain_builder.h"
-#include "dermis/offline/polygon_mesh.h"
+#include "dermis/offline/build/domain_builder.h"
+#include "dermis/offline/geometry/polygon_mesh.h"
 #include "dermis/runtime/character.h"
 #include "dermis/surface/displacement.h"
 

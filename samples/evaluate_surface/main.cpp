@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "dermis/offline/builtin_meshes.h"
-#include "dermis/offline/domain_builder.h"
+#include "dermis/offline/build/domain_builder.h"
+#include "dermis/offline/geometry/builtin_meshes.h"
 #include "dermis/surface/surface_evaluator.h"
 
 int main() {

@@ -5,9 +5,11 @@ cmake_policy(SET CMP0057 NEW)
 file(GLOB_RECURSE files
      ${ROOT}/sdk/include/dermis/core/*.h ${ROOT}/sdk/include/dermis/surface/*.h
      ${ROOT}/sdk/include/dermis/deform/*.h ${ROOT}/sdk/src/core/*.cpp
-     ${ROOT}/sdk/src/surface/*.cpp ${ROOT}/sdk/src/deform/*.cpp ${ROOT}/sdk/src/deform/*.h)
+     ${ROOT}/sdk/src/surface/*.cpp ${ROOT}/sdk/src/deform/*.cpp ${ROOT}/sdk/src/deform/*.h
+     ${ROOT}/sdk/src/core/*.h)
 file(GLOB_RECURSE runtime_files ${ROOT}/sdk/include/dermis/runtime/*.h
-     ${ROOT}/sdk/include/dermis/dermis.h ${ROOT}/sdk/src/runtime/*.cpp ${ROOT}/sdk/src/runtime/*.h)
+     ${ROOT}/sdk/include/dermis/dermis.h ${ROOT}/sdk/src/runtime/*.cpp ${ROOT}/sdk/src/runtime/*.h
+     ${ROOT}/sdk/include/dermis/dsurf/*.h ${ROOT}/sdk/src/dsurf/*.cpp ${ROOT}/sdk/src/dsurf/*.h)
 foreach(f ${files} ${runtime_files})
   file(STRINGS ${f} includes REGEX "^#include")
   foreach(line ${includes})

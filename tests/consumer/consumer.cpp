@@ -10,8 +10,8 @@
 
 #include "dermis/asset/asset.h"
 #include "dermis/deform/deformer.h"
-#include "dermis/offline/builtin_meshes.h"
-#include "dermis/offline/domain_builder.h"
+#include "dermis/offline/build/domain_builder.h"
+#include "dermis/offline/geometry/builtin_meshes.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/surface/surface_evaluator.h"
 

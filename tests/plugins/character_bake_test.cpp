@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include "dermis/offline/character_fit.h"
-#include "dermis/offline/character_pose.h"
+#include "dermis/offline/character/character_fit.h"
+#include "dermis/offline/character/character_pose.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/runtime/character.h"
 #include "support/external_checks.h"

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "dermis/asset/asset_validate.h"
-#include "dermis/offline/character_export.h"
-#include "dermis/offline/character_fit.h"
+#include "dermis/offline/character/character_export.h"
+#include "dermis/offline/character/character_fit.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/runtime/character.h"
 #include "support/assimp_counts.h"

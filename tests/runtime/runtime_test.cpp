@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "dermis/asset/asset_pose.h"
-#include "dermis/offline/character_fit.h"
-#include "dermis/offline/character_pose.h"
+#include "dermis/offline/character/character_fit.h"
+#include "dermis/offline/character/character_pose.h"
 #include "dermis/runtime/evaluation_plan.h"
 #include "dermis/surface/surface_evaluator.h"
 #include "test_meshes.h"

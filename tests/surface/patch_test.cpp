@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 #include <catch2/catch.hpp>
 
-#include "dermis/offline/patch_fit_operator.h"
+#include "dermis/offline/build/patch_fit_operator.h"
 #include "dermis/surface/local_patch.h"
 #include "test_meshes.h"
 

@@ -4,8 +4,8 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 
-#include "dermis/offline/mesh_metrics.h"
-#include "dermis/offline/obj_io.h"
+#include "dermis/offline/geometry/mesh_metrics.h"
+#include "dermis/offline/io/obj_io.h"
 #include "test_meshes.h"
 
 using namespace dermis;

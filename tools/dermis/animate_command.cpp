@@ -14,9 +14,9 @@
 
 #include "character_args.h"
 #include "commands.h"
-#include "dermis/offline/character_pose.h"
-#include "dermis/offline/obj_io.h"
-#include "dermis/offline/skin_transfer.h"
+#include "dermis/offline/character/character_pose.h"
+#include "dermis/offline/character/skin_transfer.h"
+#include "dermis/offline/io/obj_io.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/plugins/import.h"
 

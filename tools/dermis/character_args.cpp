@@ -3,7 +3,7 @@
 
 #include <charconv>
 
-#include "dermis/core/file_bytes.h"
+#include "dermis/core/file_io.h"
 
 namespace dermis::cli {
 

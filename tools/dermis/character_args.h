@@ -9,7 +9,7 @@
 
 #include "dermis/core/status.h"
 #include "dermis/deform/deformer.h"
-#include "dermis/offline/character_pose.h"
+#include "dermis/offline/character/character_pose.h"
 #include "dermis/runtime/character.h"
 
 namespace dermis::cli {

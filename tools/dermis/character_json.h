@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "dermis/dsurf/dsurf.h"
 #include "dermis/runtime/character.h"
-#include "dermis/surface/dsurf.h"
 
 namespace dermis::cli {
 

@@ -13,8 +13,8 @@
 
 #include "character_args.h"
 #include "commands.h"
-#include "dermis/offline/character_export.h"
-#include "dermis/offline/character_pose.h"
+#include "dermis/offline/character/character_export.h"
+#include "dermis/offline/character/character_pose.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/plugins/import.h"
 #include "dermis/runtime/character.h"

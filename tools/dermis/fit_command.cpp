@@ -11,13 +11,13 @@
 #include "character_json.h"
 #include "commands.h"
 #include "dermis/asset/asset_validate.h"
-#include "dermis/offline/atomic_file.h"
-#include "dermis/offline/character_fit.h"
-#include "dermis/offline/obj_io.h"
-#include "dermis/offline/point_input.h"
-#include "dermis/offline/surface_fit.h"
+#include "dermis/core/file_io.h"
+#include "dermis/dsurf/dsurf.h"
+#include "dermis/offline/character/character_fit.h"
+#include "dermis/offline/fit/surface_fit.h"
+#include "dermis/offline/io/obj_io.h"
+#include "dermis/offline/io/point_input.h"
 #include "dermis/plugins/import.h"
-#include "dermis/surface/dsurf.h"
 
 namespace dermis::cli {
 namespace {

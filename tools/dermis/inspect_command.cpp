@@ -20,11 +20,11 @@
 #include "character_json.h"
 #include "commands.h"
 #include "dermis/asset/asset.h"
-#include "dermis/core/file_bytes.h"
+#include "dermis/core/file_io.h"
+#include "dermis/dsurf/dsurf.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/plugins/import.h"
 #include "dermis/runtime/character.h"
-#include "dermis/surface/dsurf.h"
 
 namespace dermis::cli {
 namespace {

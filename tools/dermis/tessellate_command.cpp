@@ -9,10 +9,10 @@
 #include <string>
 
 #include "commands.h"
-#include "dermis/offline/builtin_meshes.h"
-#include "dermis/offline/domain_builder.h"
-#include "dermis/offline/obj_io.h"
-#include "dermis/surface/dsurf.h"
+#include "dermis/dsurf/dsurf.h"
+#include "dermis/offline/build/domain_builder.h"
+#include "dermis/offline/geometry/builtin_meshes.h"
+#include "dermis/offline/io/obj_io.h"
 #include "dermis/surface/tessellation.h"
 
 namespace dermis::cli {

@@ -14,7 +14,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "dermis/offline/atomic_file.h"
+#include "dermis/core/file_io.h"
 
 namespace dermis::render {
 namespace {

@@ -14,7 +14,7 @@
 #include "dermis/asset/asset.h"
 #include "dermis/core/status.h"
 #include "dermis/deform/deformer.h"
-#include "dermis/surface/dsurf.h"
+#include "dermis/dsurf/dsurf.h"
 
 namespace dermis {
 

@@ -32,7 +32,7 @@ struct DomainOptions {
 };
 
 /// Everything a ManifoldDomain is made of. Filled by the offline builder
-/// (dermis/offline/domain_builder.h) or by a file reader, then validated by Create().
+/// (dermis/offline/build/domain_builder.h) or by a file reader, then validated by Create().
 struct DomainData {
   MeshTopology topology;  ///< All quads, every vertex used by a face.
   DomainOptions options;

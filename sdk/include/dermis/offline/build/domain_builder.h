@@ -1,0 +1,40 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+/// \file
+/// \brief Offline construction of a manifold domain from a polygon control mesh.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "dermis/core/status.h"
+#include "dermis/offline/geometry/polygon_mesh.h"
+#include "dermis/offline/geometry/quadrangulate.h"
+#include "dermis/surface/local_patch.h"
+#include "dermis/surface/manifold_domain.h"
+
+namespace dermis {
+
+/// A control mesh with its manifold domain and the patches fitted to its rest positions.
+struct ControlSurface {
+  QuadMesh control;                        ///< The all-quad control mesh (rest positions).
+  std::unique_ptr<ManifoldDomain> domain;  ///< Charts, blending and patch operators.
+  std::vector<LocalPatch> patches;         ///< Fitted to control.positions.
+};
+
+/// Chooses the chart kind of every vertex of an all-quad topology: interior vertices get full
+/// charts; a boundary vertex with one face is a convex corner; with more faces the sum of its
+/// corner angles at rest decides: < 3pi/4 convex corner, > 5pi/4 concave corner, else crease.
+std::vector<VertexKind> ClassifyVertices(const MeshTopology& topology,
+                                         const std::vector<Vec3>& positions);
+
+/// Builds the domain of an all-quad topology: chart kinds from the rest positions, one patch-fit
+/// operator per distinct (valence, kind).
+Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>& positions,
+                           const DomainOptions& options, std::unique_ptr<ManifoldDomain>* out);
+
+/// The whole chain: validate, quadrangulate, build topology and domain, fit patches.
+/// Errors name the mesh's source, element and line.
+Status BuildControlSurface(const PolygonMesh& mesh, const DomainOptions& options,
+                           ControlSurface* out);
+
+}  // namespace dermis

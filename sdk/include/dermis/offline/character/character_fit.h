@@ -1,0 +1,65 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+/// \file
+/// \brief Fitting a skinned (or static) character: every mesh is welded by position, split
+/// into connected components, and each component becomes a displaced surface (paper section 4,
+/// FitSurface()); control vertices get skin weights from the dense mesh and every original
+/// vertex is bound to the surface by its fitted parameter.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "dermis/offline/fit/surface_fit.h"
+#include "dermis/runtime/character.h"
+
+namespace dermis {
+
+/// Options of FitCharacter().
+struct CharacterFitOptions {
+  /// Settings of each component's fit. `holdout` is ignored (every vertex is fitted, so each
+  /// one gets a parameter); `control_vertices` is ignored when vertex_ratio > 0.
+  /// A character's mesh is exact (a game mesh, not a noisy scan) and its vertices are the
+  /// bound export's vertices, so its fit interpolates: plain MBA at density 2.2, no smoothing
+  /// spline. The control-vertex fit is off: a character's control mesh has about a quarter of
+  /// its vertices, too few points per control vertex to determine their positions.
+  FitOptions fit = [] {
+    FitOptions f;
+    f.control_fit_iterations = 0;
+    f.displacement.density = 2.2;
+    f.displacement.smoothing = 0.0;
+    return f;
+  }();
+  /// Control vertices per component = welded vertices * vertex_ratio, at least
+  /// min_control_vertices, at most what splitting the whole component into quads gives.
+  double vertex_ratio = 0.25;
+  /// Low-poly game meshes (a few hundred vertices) need a control mesh close to their own
+  /// triangles: a coarser one puts the smooth surface far inside sharp features (measured on
+  /// the Khronos characters in docs/characters.md).
+  int min_control_vertices = 300;
+  /// Components with fewer welded vertices are left unfitted ("too small").
+  int min_vertices = 8;
+  /// Called with "mesh M component C: stage" as the fit progresses (may be empty).
+  std::function<void(const std::string&)> progress;
+};
+
+/// Totals over the character.
+struct CharacterFitReport {
+  std::int64_t meshes = 0, components = 0, parts_fitted = 0, parts_unfitted = 0;
+  std::int64_t vertices = 0;        ///< Original vertices over all primitives.
+  std::int64_t vertices_bound = 0;  ///< Of those, bound to a fitted surface.
+  double e1_mean = 0.0;  ///< Mean |p - D(z_p)| over bound original vertices (model units).
+  double e1_max = 0.0;
+  double seconds = 0.0;
+};
+
+/// Fits every mesh of `asset` (which must pass ValidateAsset()). The data points of a component
+/// are its welded vertices plus interior samples of triangles much larger than the median edge
+/// (spacing about that edge), so large flat triangles constrain the surface too; errors
+/// (E1) are reported over the vertices. Only triangle primitives
+/// (lists, strips, fans) are fitted; points and lines stay as they are. A component that
+/// cannot be fitted (too few vertices, degenerate, non-manifold, or a fit error) is recorded
+/// in Character::unfitted with the reason and keeps its original geometry.
+Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Character* out,
+                    CharacterFitReport* report);
+
+}  // namespace dermis

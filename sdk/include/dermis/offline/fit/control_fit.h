@@ -1,0 +1,56 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+/// \file
+/// \brief Fits the control-vertex positions so that the blended domain surface (paper Eq. 1-2
+/// and 4 without displacement) passes close to the data: linear least squares at fixed surface
+/// parameters (docs/fitting.md, "Control-vertex fit").
+///
+/// Simplification leaves the control vertices on the data, and the smooth domain surface then
+/// cuts every sharp or thin feature (an ear tip, the rim of a base) by up to several percent of
+/// the model: the displacement there is large, changes fast and may not be a height field. The
+/// domain surface Q(z) = sum_a psi_a P_a(theta_a(z)) is linear in the control positions X for a
+/// fixed parameter z, because each patch P_a is the fit operator applied to X (Eq. 2). So
+/// min_X sum_i |Q(z_i; X) - p_i|^2 is a sparse linear least-squares problem; alternated with
+/// reprojection it is the classic parameter-correction scheme (Hoppe et al. 1994; Marinov and
+/// Kobbelt 2004).
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "dermis/core/status.h"
+#include "dermis/offline/fit/point_fit.h"
+#include "dermis/surface/manifold_domain.h"
+
+namespace dermis {
+
+/// The domain surface at (face, uv) as a linear combination of control positions:
+/// Q(face, uv) = sum_k weight_k X[vertex_k]. Pairs (vertex, weight) are appended to *out, a
+/// vertex may appear more than once. Returns false (appending nothing) for an invalid face or
+/// uv outside [0,1]^2.
+bool DomainSurfaceStencil(const ManifoldDomain& domain, Index face, Vec2 uv,
+                          std::vector<std::pair<Index, double>>* out);
+
+/// Options of FitControlPositions().
+struct ControlFitOptions {
+  /// Damping: each vertex is also pulled towards its current position with this fraction of
+  /// its own data weight (the diagonal of the normal equations), which keeps the step where
+  /// the reprojected parameters stay valid; at least a hundredth of the mean diagonal, so a
+  /// vertex with little or no data stays (nearly) where it is.
+  double damping = 0.05;
+  /// Residuals above this multiple of the median residual (at least 1e-9 of the data's size)
+  /// get a weight that decays as (cutoff / r)^2 (a Cauchy-like robust loss against
+  /// misprojected points); <= 0 turns the robust weights off.
+  double robust_cutoff = 8.0;
+  int threads = 0;  ///< 0: hardware concurrency. Results do not depend on it.
+};
+
+/// One least-squares step: new control positions minimising sum_i |Q(z_i; X) - p_i|^2 (with
+/// damping and robust weights) at the parameters of `fits` (points with kOutside status are
+/// ignored). `positions` holds the current positions on entry and the fitted ones on return.
+/// Deterministic whatever the thread count. Fails (leaving positions unchanged) if the system
+/// cannot be solved.
+Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>& points,
+                           const std::vector<PointFit>& fits, const ControlFitOptions& options,
+                           std::vector<Vec3>* positions);
+
+}  // namespace dermis

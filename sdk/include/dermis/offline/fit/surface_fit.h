@@ -1,0 +1,122 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+/// \file
+/// \brief The whole fit of paper section 4: a dense mesh or point cloud to a control mesh, its
+/// manifold domain and per-chart multilevel B-spline displacements, with error metrics
+/// (fitting.md section 3: E1, held-out E2, two-sided Hausdorff E3).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dermis/core/status.h"
+#include "dermis/offline/build/control_mesh.h"
+#include "dermis/offline/build/domain_builder.h"
+#include "dermis/offline/fit/control_fit.h"
+#include "dermis/offline/fit/displacement_fit.h"
+#include "dermis/offline/fit/point_fit.h"
+#include "dermis/offline/geometry/polygon_mesh.h"
+#include "dermis/surface/bspline_displacement.h"
+
+namespace dermis {
+
+/// Options of FitSurface().
+struct FitOptions {
+  /// Wanted control vertices when the control mesh is built from the data.
+  int control_vertices = 540;
+  /// True: a control_vertices target above what splitting the whole mesh gives is lowered to
+  /// that count; false: it is an error (the CLI's --control-vertices).
+  bool clamp_control_vertices = false;
+  DomainOptions domain;
+  /// Rounds of projection + control-vertex least squares (control_fit.h) applied to a control
+  /// mesh built from the data (never to a given one); 0 keeps the simplified positions. Skipped
+  /// where the data is too sparse to determine the positions: fewer than
+  /// control_fit_min_points_per_vertex points (not held out) per control vertex.
+  int control_fit_iterations = 2;
+  double control_fit_min_points_per_vertex = 16.0;
+  ControlFitOptions control_fit;
+  /// Levels of the displacement functions (max_levels is --levels; threads is ignored).
+  DisplacementFitOptions displacement;
+  /// Fraction of the points held out of the fit and used only to measure (E2), in [0, 1).
+  double holdout = 0.1;
+  std::uint64_t holdout_seed = 0x44657266u;
+  int threads = 0;  ///< 0: hardware concurrency. Results do not depend on it.
+  /// Called with a short stage name as the fit progresses (may be empty).
+  std::function<void(const std::string& stage)> progress;
+};
+
+/// What to fit.
+struct FitInput {
+  /// The data points (model units). For a mesh input: the vertices its faces use.
+  std::vector<Vec3> points;
+  /// The dense mesh over `points` (same vertex order), or null for a point cloud. Needed to
+  /// build a control mesh and for the two-sided Hausdorff distance.
+  const PolygonMesh* mesh = nullptr;
+  /// A given control mesh (used as is), or null to build one from `mesh`.
+  const PolygonMesh* control = nullptr;
+  /// Input vertices no face used (dropped before the fit), for the report.
+  std::int64_t points_dropped = 0;
+};
+
+/// Distances in the paper's unit: the data scaled so that its bounding box's largest side is 1.
+struct FitErrors {
+  double mean = 0.0, rms = 0.0, max = 0.0;  ///< E1: |p - D(z_p)| at the fitted parameter.
+  double unoptimized_mean = 0.0;  ///< E1 of a fit from the projection alone (paper's "without").
+  double closest_mean = 0.0;      ///< Mean true point-to-surface distance of the fitted points.
+  double holdout_mean = 0.0, holdout_max = 0.0;  ///< E2: point-to-surface, held-out points.
+  bool has_hausdorff = false;  ///< False for a point cloud (no mesh to compare with).
+  double hausdorff = 0.0;      ///< E3, two-sided against the input mesh.
+  double hausdorff_percent_diagonal = 0.0;
+};
+
+/// Wall-clock seconds per stage.
+struct FitSeconds {
+  double control_mesh = 0.0;  ///< Building the control mesh, domain, patches, control fit.
+  double projection_optimization = 0.0;  ///< FitPoints() on the fitted points.
+  double displacement = 0.0;             ///< MBA of every chart.
+  double total = 0.0;                    ///< The three above plus bookkeeping.
+  double metrics = 0.0;                  ///< Error measurement (not part of total).
+};
+
+/// The fit's report (written as JSON by `dermis fit --report`).
+struct FitReport {
+  std::int64_t points = 0;                ///< Data points (after dropping unused vertices).
+  std::int64_t points_dropped = 0;        ///< Vertices no face used.
+  std::int64_t points_fitted = 0;         ///< Used in the fit.
+  std::int64_t points_holdout = 0;        ///< Held out.
+  std::int64_t points_outside = 0;        ///< Left every chart in projection (not fitted).
+  std::int64_t points_not_converged = 0;  ///< Fitted from their projection only (folds).
+  std::int64_t control_vertices = 0, control_faces = 0;
+  std::int64_t control_fit_rounds = 0;   ///< Control-vertex fit rounds done (FitOptions).
+  std::int64_t coefficients = 0;         ///< Stored displacement coefficients, all levels.
+  std::int64_t finest_coefficients = 0;  ///< Those of each chart's finest level only.
+  int max_levels = 0;                    ///< Levels of the deepest chart.
+  int threads = 1;
+  double scale = 1.0;  ///< Largest side of the data's bounding box (model units).
+  FitErrors error;
+  FitSeconds seconds;
+};
+
+/// A fitted displaced surface.
+struct FittedSurface {
+  PolygonMesh control_mesh;  ///< As given or as built (all quads).
+  ControlSurface surface;    ///< Domain and rest patches.
+  std::unique_ptr<BsplineDisplacement> displacement;
+  /// One per fitted point, in input order without the held-out points (all of them when
+  /// FitOptions::holdout is 0): the surface parameter each point was fitted at.
+  std::vector<PointFit> point_fits;
+};
+
+/// Runs the fit: control mesh (given or built), projection and optimisation of the fitted
+/// points, displacement fitting, then the error metrics. Bad input (no points, non-finite
+/// coordinates, no control mesh for a point cloud, too many control vertices) gives an error
+/// naming the source.
+Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurface* out,
+                  FitReport* report);
+
+/// Whether point i is held out (a fixed hash of i and the seed, so the split is reproducible).
+bool IsHeldOut(std::size_t i, double fraction, std::uint64_t seed);
+
+}  // namespace dermis

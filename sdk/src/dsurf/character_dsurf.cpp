@@ -1,0 +1,242 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Character files: version-2 .dsurf (docs/file-format.md, "Character files"). Each part's
+// surface is a complete version-1 .dsurf inside, so the surface reader is shared.
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "core/byte_stream.h"
+#include "dermis/asset/asset_io.h"
+#include "dermis/core/file_io.h"
+#include "dermis/runtime/character.h"
+
+namespace dermis {
+namespace {
+
+constexpr char kMagic[8] = {'D', 'S', 'U', 'R', 'F', '\r', '\n', '\x1a'};
+
+void WriteSummary(const PartFitSummary& f, ByteWriter* w) {
+  w->I64(f.points);
+  w->I64(f.triangles);
+  w->I64(f.points_outside);
+  w->I64(f.points_not_converged);
+  w->F64(f.scale);
+  w->F64(f.e1_mean);
+  w->F64(f.e1_max);
+  w->F64(f.hausdorff);
+  w->I64(f.coefficients);
+  w->I32(f.levels);
+}
+
+PartFitSummary ReadSummary(ByteReader* r) {
+  PartFitSummary f;
+  f.points = r->I64("fit points");
+  f.triangles = r->I64("fit triangles");
+  f.points_outside = r->I64("fit points outside");
+  f.points_not_converged = r->I64("fit points not converged");
+  f.scale = r->F64("fit scale");
+  f.e1_mean = r->F64("fit e1 mean");
+  f.e1_max = r->F64("fit e1 max");
+  f.hausdorff = r->F64("fit hausdorff");
+  f.coefficients = r->I64("fit coefficients");
+  f.levels = r->I32("fit levels");
+  return f;
+}
+
+}  // namespace
+
+std::uint32_t DsurfFileVersion(std::string_view bytes) {
+  if (bytes.size() < 12 || std::memcmp(bytes.data(), kMagic, 8) != 0) return 0;
+  std::uint32_t v = 0;
+  for (int i = 0; i < 4; ++i) {
+    v |= static_cast<std::uint32_t>(
+             static_cast<unsigned char>(bytes[8 + static_cast<std::size_t>(i)]))
+         << (8 * i);
+  }
+  return v;
+}
+
+std::string SerializeCharacter(const Character& ch) {
+  ByteWriter w;
+  w.str().append(kMagic, 8);
+  w.U32(kCharacterDsurfVersion);
+  w.U32(0);  // flags
+  w.Str(SerializeAsset(ch.asset));
+  w.U32(static_cast<std::uint32_t>(ch.parts.size()));
+  for (const CharacterPart& p : ch.parts) {
+    w.I32(p.mesh);
+    w.I32(p.component);
+    w.I32(p.skin);
+    w.Str(SerializeDsurf(*p.surface.domain, p.surface.rest_positions.data(),
+                         p.surface.displacement.get()));
+    w.U64(p.control_joints.size());
+    for (std::size_t i = 0; i < p.control_joints.size(); ++i) {
+      for (int k = 0; k < 4; ++k) w.U32(p.control_joints[i][k]);
+      for (int k = 0; k < 4; ++k) w.F32(p.control_weights[i][k]);
+    }
+    WriteSummary(p.fit, &w);
+  }
+  w.U32(static_cast<std::uint32_t>(ch.bindings.size()));
+  for (const auto& mesh : ch.bindings) {
+    w.U32(static_cast<std::uint32_t>(mesh.size()));
+    for (const auto& prim : mesh) {
+      w.U64(prim.size());
+      for (const VertexBinding& b : prim) {
+        w.I32(b.part);
+        w.I32(b.face);
+        w.F64(b.u);
+        w.F64(b.v);
+      }
+    }
+  }
+  w.U32(static_cast<std::uint32_t>(ch.unfitted.size()));
+  for (const UnfittedPart& u : ch.unfitted) {
+    w.I32(u.mesh);
+    w.I32(u.component);
+    w.I64(u.vertices);
+    w.I64(u.triangles);
+    w.Str(u.reason);
+  }
+  w.U64(Fnv1a64(w.str()));
+  return std::move(w.str());
+}
+
+Status ParseCharacter(std::string_view bytes, const std::string& name, Character* out) {
+  const std::uint32_t version = DsurfFileVersion(bytes);
+  if (version == 0) return Status::InvalidInput(name + ": not a .dsurf file (bad magic bytes)");
+  if (version != kCharacterDsurfVersion) {
+    return Status::InvalidInput(name + ": a version " + std::to_string(version) +
+                                " .dsurf is a plain surface, not a character");
+  }
+  if (bytes.size() < 24) return Status::InvalidInput(name + ": truncated .dsurf header");
+  {
+    ByteReader tail(bytes.substr(bytes.size() - 8), name);
+    if (tail.U64("checksum") != Fnv1a64(bytes.substr(0, bytes.size() - 8))) {
+      return Status::InvalidInput(name + ": checksum mismatch (the file is corrupt or truncated)");
+    }
+  }
+  ByteReader r(bytes.substr(0, bytes.size() - 8), name);
+  r.Raw(8);
+  r.U32("version");
+  r.U32("flags");
+  Character ch;
+  const std::string asset_bytes = r.Str("asset");
+  if (!r.ok()) return r.status();
+  Status s = ParseAsset(asset_bytes, name, &ch.asset);
+  if (!s.ok()) return s;
+  const std::uint32_t nparts = r.U32("part count");
+  // A part takes at least 12 + 8 + 8 + 84 bytes.
+  if (!r.Need(nparts, 112, "parts")) return r.status();
+  for (std::uint32_t i = 0; i < nparts && r.ok(); ++i) {
+    CharacterPart p;
+    p.mesh = r.I32("part mesh");
+    p.component = r.I32("part component");
+    p.skin = r.I32("part skin");
+    const std::string surface = r.Str("part surface");
+    if (!r.ok()) break;
+    const std::string where = name + ": part " + std::to_string(i);
+    if (p.mesh < kInvalidIndex || p.mesh >= static_cast<Index>(ch.asset.meshes.size()) ||
+        p.skin < kInvalidIndex || p.skin >= static_cast<Index>(ch.asset.skins.size())) {
+      return Status::InvalidInput(where + ": mesh or skin index out of range");
+    }
+    s = ParseDsurf(surface, where, &p.surface);
+    if (!s.ok()) return s;
+    const std::uint64_t n = r.U64("control influence count");
+    if (!r.Need(n, 32, "control influences")) break;
+    if (n != 0 && n != p.surface.rest_positions.size()) {
+      return Status::InvalidInput(where + ": " + std::to_string(n) + " control influences for " +
+                                  std::to_string(p.surface.rest_positions.size()) +
+                                  " control vertices");
+    }
+    p.control_joints.resize(n);
+    p.control_weights.resize(n);
+    const std::size_t njoints =
+        p.skin >= 0 ? ch.asset.skins[static_cast<std::size_t>(p.skin)].joints.size() : 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      for (int c = 0; c < 4; ++c) {
+        const std::uint32_t j = r.U32("control joint");
+        if (j >= njoints && r.ok())
+          r.Fail("part " + std::to_string(i) + ": control joint out of range");
+        p.control_joints[k][c] = static_cast<std::uint16_t>(j);
+      }
+      for (int c = 0; c < 4; ++c) {
+        const float x = r.F32("control weight");
+        if (!(x >= 0.0f && x <= 1.0f) && r.ok())
+          r.Fail("part " + std::to_string(i) + ": bad control weight");
+        p.control_weights[k][c] = x;
+      }
+    }
+    p.fit = ReadSummary(&r);
+    ch.parts.push_back(std::move(p));
+  }
+  const std::uint32_t nmeshes = r.U32("binding mesh count");
+  if (r.ok() && nmeshes != ch.asset.meshes.size()) r.Fail("bindings do not match the meshes");
+  ch.bindings.resize(r.ok() ? nmeshes : 0);
+  for (std::size_t m = 0; m < ch.bindings.size() && r.ok(); ++m) {
+    const std::uint32_t nprims = r.U32("binding primitive count");
+    if (r.ok() && nprims != ch.asset.meshes[m].primitives.size()) {
+      r.Fail("bindings of mesh " + std::to_string(m) + " do not match its primitives");
+    }
+    ch.bindings[m].resize(r.ok() ? nprims : 0);
+    for (std::size_t p = 0; p < ch.bindings[m].size() && r.ok(); ++p) {
+      const std::uint64_t nv = r.U64("binding vertex count");
+      if (r.ok() && nv != ch.asset.meshes[m].primitives[p].positions.size()) {
+        r.Fail("bindings of mesh " + std::to_string(m) + " primitive " + std::to_string(p) +
+               " do not match its vertices");
+      }
+      if (!r.Need(nv, 24, "bindings")) break;
+      ch.bindings[m][p].resize(nv);
+      for (VertexBinding& b : ch.bindings[m][p]) {
+        b.part = r.I32("binding part");
+        b.face = r.I32("binding face");
+        b.u = r.F64("binding u");
+        b.v = r.F64("binding v");
+        if (!r.ok()) break;
+        if (b.part == kInvalidIndex) continue;
+        if (b.part < 0 || b.part >= static_cast<Index>(ch.parts.size()) || b.face < 0 ||
+            b.face >= ch.parts[static_cast<std::size_t>(b.part)].surface.domain->num_faces() ||
+            !(b.u >= 0.0 && b.u <= 1.0 && b.v >= 0.0 && b.v <= 1.0)) {
+          r.Fail("mesh " + std::to_string(m) + " primitive " + std::to_string(p) +
+                 ": a vertex binding is out of range");
+        }
+      }
+    }
+  }
+  const std::uint32_t nun = r.U32("unfitted count");
+  if (r.Need(nun, 28, "unfitted parts")) {
+    for (std::uint32_t i = 0; i < nun && r.ok(); ++i) {
+      UnfittedPart u;
+      u.mesh = r.I32("unfitted mesh");
+      u.component = r.I32("unfitted component");
+      u.vertices = r.I64("unfitted vertices");
+      u.triangles = r.I64("unfitted triangles");
+      u.reason = r.Str("unfitted reason");
+      ch.unfitted.push_back(std::move(u));
+    }
+  }
+  if (!r.ok()) return r.status();
+  if (r.pos() != bytes.size() - 8) {
+    return Status::InvalidInput(name + ": unexpected bytes before the checksum");
+  }
+  *out = std::move(ch);
+  return Status::Ok();
+}
+
+Status ReadCharacter(const std::string& path, Character* out) {
+  std::string bytes;
+  Status s = ReadFileBytes(path, "a .dsurf file", &bytes);
+  if (!s.ok()) return s;
+  if (DsurfFileVersion(bytes) == 1) {
+    Character ch;
+    ch.asset.source = path;
+    CharacterPart part;
+    s = ParseDsurf(bytes, path, &part.surface);
+    if (!s.ok()) return s;
+    ch.parts.push_back(std::move(part));
+    *out = std::move(ch);
+    return Status::Ok();
+  }
+  return ParseCharacter(bytes, path, out);
+}
+
+}  // namespace dermis

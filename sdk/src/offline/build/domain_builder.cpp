@@ -1,0 +1,114 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Offline assembly of the manifold domain: chart kinds, shared patch-fit operators, patches.
+#include "dermis/offline/build/domain_builder.h"
+
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "dermis/offline/build/patch_fit_operator.h"
+
+namespace dermis {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+double Angle(Vec3 a, Vec3 b) {
+  const double c = glm::length(glm::cross(a, b));
+  const double d = glm::dot(a, b);
+  return std::atan2(c, d);
+}
+}  // namespace
+
+std::vector<VertexKind> ClassifyVertices(const MeshTopology& topo,
+                                         const std::vector<Vec3>& positions) {
+  std::vector<VertexKind> kinds(topo.num_vertices(), VertexKind::kInterior);
+  for (Index v = 0; v < topo.num_vertices(); ++v) {
+    if (!topo.is_boundary_vertex(v)) continue;
+    const int k = topo.valence(v);
+    if (k == 1) {
+      kinds[v] = VertexKind::kConvexCorner;
+      continue;
+    }
+    double sum = 0.0;
+    for (int i = 0; i < k; ++i) {
+      const RingCorner rc = topo.ring(v, i);
+      const Index n = topo.face_vertex(rc.face, (rc.corner + 1) % topo.face_size(rc.face));
+      const Index p = topo.face_vertex(
+          rc.face, (rc.corner + topo.face_size(rc.face) - 1) % topo.face_size(rc.face));
+      sum += Angle(positions[n] - positions[v], positions[p] - positions[v]);
+    }
+    if (sum < 0.75 * kPi) {
+      kinds[v] = VertexKind::kConvexCorner;
+    } else if (sum > 1.25 * kPi) {
+      kinds[v] = VertexKind::kConcaveCorner;
+    } else {
+      kinds[v] = VertexKind::kCrease;
+    }
+  }
+  return kinds;
+}
+
+Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>& positions,
+                           const DomainOptions& options, std::unique_ptr<ManifoldDomain>* out) {
+  if (positions.size() != static_cast<size_t>(topology.num_vertices())) {
+    return Status::InvalidInput("position count does not match the topology");
+  }
+  DomainData data;
+  data.topology = topology;
+  data.options = options;
+  data.vertex_kind = ClassifyVertices(topology, positions);
+  data.vertex_operator.assign(topology.num_vertices(), kInvalidIndex);
+  data.operator_offsets.assign(1, 0);
+  std::map<std::pair<int, int>, Index> cache;
+  for (Index v = 0; v < topology.num_vertices(); ++v) {
+    const int k = topology.valence(v);
+    if (k == 0) return Status::InvalidInput("vertex " + std::to_string(v) + " is used by no face");
+    const auto key = std::make_pair(k, static_cast<int>(data.vertex_kind[v]));
+    auto it = cache.find(key);
+    if (it == cache.end()) {
+      if (!topology.is_boundary_vertex(v) && k < 3) {
+        return Status::InvalidInput("interior vertex " + std::to_string(v) + " has valence " +
+                                    std::to_string(k) + " (at least 3 needed)");
+      }
+      std::vector<double> op;
+      Status s =
+          ComputePatchFitOperator(MakeChartParams(k, data.vertex_kind[v], options.chart_type), &op);
+      if (!s.ok()) return s;
+      const Index id = static_cast<Index>(data.operator_offsets.size()) - 1;
+      data.operator_values.insert(data.operator_values.end(), op.begin(), op.end());
+      data.operator_offsets.push_back(static_cast<Index>(data.operator_values.size()));
+      it = cache.emplace(key, id).first;
+    }
+    data.vertex_operator[v] = it->second;
+  }
+  Status status;
+  auto domain = ManifoldDomain::Create(std::move(data), &status);
+  if (!domain) return status;
+  *out = std::move(domain);
+  return Status::Ok();
+}
+
+Status BuildControlSurface(const PolygonMesh& mesh, const DomainOptions& options,
+                           ControlSurface* out) {
+  Status s = ValidatePolygonMesh(mesh);
+  if (!s.ok()) return s;
+  ControlSurface cs;
+  s = Quadrangulate(mesh, &cs.control);
+  if (!s.ok()) return s;
+  ElementNamer namer;
+  namer.face = [&](Index f) {
+    return "quad " + std::to_string(f) + " of " + mesh.FaceName(cs.control.quad_source_face[f]);
+  };
+  MeshTopology topo;
+  s = MeshTopology::BuildQuads(static_cast<Index>(cs.control.positions.size()), cs.control.quads,
+                               &topo, &namer);
+  if (!s.ok()) return s.WithContext(mesh.source_name.empty() ? "mesh" : mesh.source_name);
+  s = BuildManifoldDomain(topo, cs.control.positions, options, &cs.domain);
+  if (!s.ok()) return s.WithContext(mesh.source_name.empty() ? "mesh" : mesh.source_name);
+  cs.patches.resize(cs.control.positions.size());
+  cs.domain->FitPatches(cs.control.positions.data(), cs.patches.data());
+  *out = std::move(cs);
+  return Status::Ok();
+}
+
+}  // namespace dermis

@@ -1,0 +1,367 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Character fitting: weld each mesh by position, split it into connected components, fit each
+// component (paper section 4 via FitSurface), transfer skin weights to the control vertices and
+// bind every original vertex to its fitted parameter (paper Eq. 4: the vertex is D(z_p)).
+#include "dermis/offline/character/character_fit.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <numeric>
+
+#include "dermis/offline/character/skin_transfer.h"
+#include "dermis/offline/fit/surface_projection.h"
+#include "dermis/offline/geometry/triangle_distance.h"
+#include "dermis/surface/surface_evaluator.h"
+
+namespace dermis {
+namespace {
+
+/// A vertex of an original primitive.
+struct VertexRef {
+  Index primitive;
+  Index vertex;
+};
+
+std::array<std::uint32_t, 3> PositionKey(const glm::vec3& p) {
+  std::array<std::uint32_t, 3> key{};
+  for (int c = 0; c < 3; ++c) {
+    const float x = p[c] + 0.0f;  // -0 and +0 weld
+    std::memcpy(&key[static_cast<std::size_t>(c)], &x, 4);
+  }
+  return key;
+}
+
+Index Find(std::vector<Index>* parent, Index x) {
+  while ((*parent)[x] != x) {
+    (*parent)[x] = (*parent)[(*parent)[x]];
+    x = (*parent)[x];
+  }
+  return x;
+}
+
+/// Reason a component cannot be fitted, or empty.
+std::string CheckComponent(const PolygonMesh& mesh, int min_vertices) {
+  if (mesh.num_vertices() < min_vertices) {
+    return "too small: " + std::to_string(mesh.num_vertices()) + " vertices (at least " +
+           std::to_string(min_vertices) + " needed)";
+  }
+  std::map<std::pair<Index, Index>, int> edges;
+  double area = 0.0;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
+    const Vec3 &a = mesh.positions[v[0]], &b = mesh.positions[v[1]], &c = mesh.positions[v[2]];
+    area += 0.5 * glm::length(glm::cross(b - a, c - a));
+    for (int k = 0; k < 3; ++k) {
+      Index x = v[k], y = v[(k + 1) % 3];
+      ++edges[{std::min(x, y), std::max(x, y)}];
+    }
+  }
+  for (const auto& e : edges) {
+    if (e.second > 2) {
+      return "non-manifold: edge (" + std::to_string(e.first.first) + ", " +
+             std::to_string(e.first.second) + ") is shared by " + std::to_string(e.second) +
+             " triangles";
+    }
+  }
+  Vec3 lo(mesh.positions[0]), hi(lo);
+  for (const Vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const double d = glm::length(hi - lo);
+  if (!(area > 1e-12 * d * d)) return "degenerate: the triangles have no area";
+  return {};
+}
+
+/// The parameter of the surface point closest to p, for a vertex the projection lost: start
+/// from the control face whose centre sample is nearest, then Gauss-Newton.
+VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalPatch>& patches,
+                             const std::vector<Vec3>& centres, const Vec3& p) {
+  Index best = 0;
+  double bd = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < centres.size(); ++f) {
+    const double d = glm::dot(centres[f] - p, centres[f] - p);
+    if (d < bd) bd = d, best = static_cast<Index>(f);
+  }
+  Index face = best;
+  Vec2 uv(0.5);
+  ClosestPointOnSurface(*s.domain, patches.data(), s.displacement.get(), p, &face, &uv);
+  VertexBinding b;
+  b.face = face;
+  b.u = uv.x;
+  b.v = uv.y;
+  return b;
+}
+
+/// Extra data points inside triangles much larger than the typical edge (low-poly meshes have
+/// large flat triangles with no vertex inside, where the surface would be unconstrained): a
+/// barycentric grid of spacing about the median edge length, interior points only.
+std::vector<Vec3> AreaSamples(const PolygonMesh& mesh) {
+  std::vector<double> edges;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
+    for (int k = 0; k < 3; ++k) {
+      edges.push_back(glm::length(mesh.positions[v[k]] - mesh.positions[v[(k + 1) % 3]]));
+    }
+  }
+  std::vector<Vec3> out;
+  if (edges.empty()) return out;
+  std::nth_element(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(edges.size() / 2),
+                   edges.end());
+  const double h = edges[edges.size() / 2];
+  if (!(h > 0.0)) return out;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
+    const Vec3 &a = mesh.positions[v[0]], &b = mesh.positions[v[1]], &c = mesh.positions[v[2]];
+    const double longest =
+        std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
+    if (!(longest > 1.5 * h)) continue;
+    const int n = std::min(64, static_cast<int>(std::ceil(longest / h)));
+    for (int i = 1; i < n; ++i) {
+      for (int j = 1; i + j < n; ++j) {
+        const double s = double(i) / n, t = double(j) / n;
+        out.push_back((1.0 - s - t) * a + s * b + t * c);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Character* out,
+                    CharacterFitReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Character ch;
+  ch.asset = asset;
+  CharacterFitReport rep;
+  rep.meshes = static_cast<std::int64_t>(asset.meshes.size());
+  double e1_sum = 0.0;
+  ch.bindings.resize(asset.meshes.size());
+  for (std::size_t m = 0; m < asset.meshes.size(); ++m) {
+    const AssetMesh& mesh = asset.meshes[m];
+    ch.bindings[m].resize(mesh.primitives.size());
+    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+      ch.bindings[m][p].resize(mesh.primitives[p].positions.size());
+      rep.vertices += static_cast<std::int64_t>(mesh.primitives[p].positions.size());
+    }
+    Index skin = kInvalidIndex;
+    for (const AssetNode& node : asset.nodes) {
+      if (node.mesh == static_cast<Index>(m) && node.skin != kInvalidIndex) {
+        skin = node.skin;
+        break;
+      }
+    }
+    // Weld by exact position over all primitives (glTF splits vertices at UV and normal seams).
+    std::map<std::array<std::uint32_t, 3>, Index> weld;
+    std::vector<Vec3> positions;
+    std::vector<VertexRef> representative;
+    std::vector<std::vector<Index>> welded(mesh.primitives.size());
+    std::vector<std::uint32_t> triangles;
+    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const AssetPrimitive& prim = mesh.primitives[p];
+      welded[p].assign(prim.positions.size(), kInvalidIndex);
+      const std::vector<std::uint32_t> tris = PrimitiveTriangles(prim);
+      for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
+        std::uint32_t w[3];
+        for (int k = 0; k < 3; ++k) {
+          const std::uint32_t v = tris[t + static_cast<std::size_t>(k)];
+          if (welded[p][v] == kInvalidIndex) {
+            auto ins =
+                weld.emplace(PositionKey(prim.positions[v]), static_cast<Index>(positions.size()));
+            if (ins.second) {
+              positions.push_back(Vec3(prim.positions[v]));
+              representative.push_back({static_cast<Index>(p), static_cast<Index>(v)});
+            }
+            welded[p][v] = ins.first->second;
+          }
+          w[k] = static_cast<std::uint32_t>(welded[p][v]);
+        }
+        if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) continue;
+        triangles.insert(triangles.end(), {w[0], w[1], w[2]});
+      }
+    }
+    if (triangles.empty()) continue;
+    // Connected components (union-find), numbered by their first triangle.
+    std::vector<Index> parent(positions.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    for (std::size_t t = 0; t < triangles.size(); t += 3) {
+      for (int k = 1; k < 3; ++k) {
+        const Index a = Find(&parent, static_cast<Index>(triangles[t])),
+                    b = Find(&parent,
+                             static_cast<Index>(triangles[t + static_cast<std::size_t>(k)]));
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+      }
+    }
+    std::map<Index, Index> component_of_root;
+    std::vector<Index> component(positions.size(), kInvalidIndex);
+    std::vector<std::vector<std::size_t>> component_tris;
+    for (std::size_t t = 0; t < triangles.size(); t += 3) {
+      const Index root = Find(&parent, static_cast<Index>(triangles[t]));
+      auto ins = component_of_root.emplace(root, static_cast<Index>(component_tris.size()));
+      if (ins.second) component_tris.emplace_back();
+      component_tris[static_cast<std::size_t>(ins.first->second)].push_back(t);
+    }
+    for (std::size_t v = 0; v < positions.size(); ++v) {
+      auto it = component_of_root.find(Find(&parent, static_cast<Index>(v)));
+      if (it != component_of_root.end()) component[v] = it->second;
+    }
+    rep.components += static_cast<std::int64_t>(component_tris.size());
+    for (std::size_t c = 0; c < component_tris.size(); ++c) {
+      // The component as a dense mesh with local vertex numbers (in welded order).
+      std::vector<Index> local(positions.size(), kInvalidIndex);
+      std::vector<Index> global;
+      for (std::size_t v = 0; v < positions.size(); ++v) {
+        if (component[v] == static_cast<Index>(c)) {
+          local[v] = static_cast<Index>(global.size());
+          global.push_back(static_cast<Index>(v));
+        }
+      }
+      PolygonMesh dense;
+      dense.source_name =
+          asset.source + ": mesh " + std::to_string(m) + " component " + std::to_string(c);
+      for (Index g : global) dense.positions.push_back(positions[g]);
+      for (std::size_t t : component_tris[c]) {
+        dense.AddFace({local[triangles[t]], local[triangles[t + 1]], local[triangles[t + 2]]});
+      }
+      const std::string stage = "mesh " + std::to_string(m) + " component " + std::to_string(c);
+      UnfittedPart unfitted;
+      unfitted.mesh = static_cast<Index>(m);
+      unfitted.component = static_cast<Index>(c);
+      unfitted.vertices = dense.num_vertices();
+      unfitted.triangles = dense.num_faces();
+      unfitted.reason = CheckComponent(dense, options.min_vertices);
+      FittedSurface fitted;
+      FitReport fr;
+      if (unfitted.reason.empty()) {
+        FitInput input;
+        input.points = dense.positions;  // first, so point_fits[i] is vertex i's
+        const std::vector<Vec3> extra = AreaSamples(dense);
+        input.points.insert(input.points.end(), extra.begin(), extra.end());
+        input.mesh = &dense;
+        FitOptions fo = options.fit;
+        fo.holdout = 0.0;
+        if (options.vertex_ratio > 0.0) {
+          fo.control_vertices =
+              std::max(options.min_control_vertices,
+                       static_cast<int>(std::lround(options.vertex_ratio * dense.num_vertices())));
+        }
+        // A small component gets the full split of its own (non-degenerate) triangles, no more.
+        fo.clamp_control_vertices = true;
+        if (options.progress) {
+          fo.progress = [&](const std::string& s) { options.progress(stage + ": " + s); };
+        }
+        Status s = FitSurface(input, fo, &fitted, &fr);
+        if (!s.ok()) unfitted.reason = s.message();
+      }
+      if (!unfitted.reason.empty()) {
+        ch.unfitted.push_back(unfitted);
+        ++rep.parts_unfitted;
+        continue;
+      }
+      CharacterPart part;
+      part.mesh = static_cast<Index>(m);
+      part.component = static_cast<Index>(c);
+      part.skin = skin;
+      part.surface.domain = std::move(fitted.surface.domain);
+      part.surface.rest_positions = fitted.surface.control.positions;
+      part.surface.displacement = std::move(fitted.displacement);
+      const DisplacedSurface& surf = part.surface;
+      const std::vector<LocalPatch>& patches = fitted.surface.patches;
+      // Parameters of every welded vertex: the fitted one, or the closest point for the few
+      // the projection lost.
+      std::vector<Vec3> centres;
+      std::vector<VertexBinding> param(global.size());
+      for (std::size_t i = 0; i < global.size(); ++i) {
+        const PointFit& f = fitted.point_fits[i];
+        if (f.status != PointFitStatus::kOutside) {
+          param[i].face = f.face;
+          param[i].u = f.uv.x;
+          param[i].v = f.uv.y;
+          continue;
+        }
+        if (centres.empty()) {
+          for (Index f2 = 0; f2 < surf.domain->num_faces(); ++f2) {
+            SurfacePoint sp;
+            EvaluateSurface(*surf.domain, patches.data(), surf.displacement.get(), f2, Vec2(0.5),
+                            &sp);
+            centres.push_back(sp.position);
+          }
+        }
+        param[i] = ClosestBinding(surf, patches, centres, dense.positions[i]);
+      }
+      const Index part_index = static_cast<Index>(ch.parts.size());
+      double part_sum = 0.0, part_max = 0.0;
+      for (std::size_t i = 0; i < global.size(); ++i) {
+        param[i].part = part_index;
+        SurfacePoint sp;
+        EvaluateSurface(*surf.domain, patches.data(), surf.displacement.get(), param[i].face,
+                        Vec2(param[i].u, param[i].v), &sp);
+        const double e = glm::length(sp.position - dense.positions[i]);
+        part_sum += e, part_max = std::max(part_max, e);
+      }
+      // Every original vertex of the component takes its welded vertex's parameter.
+      for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+        for (std::size_t v = 0; v < welded[p].size(); ++v) {
+          const Index w = welded[p][v];
+          if (w == kInvalidIndex || component[w] != static_cast<Index>(c)) continue;
+          const VertexBinding& b = param[static_cast<std::size_t>(local[w])];
+          ch.bindings[m][p][v] = b;
+          SurfacePoint sp;
+          EvaluateSurface(*surf.domain, patches.data(), surf.displacement.get(), b.face,
+                          Vec2(b.u, b.v), &sp);
+          const double e = glm::length(sp.position - Vec3(mesh.primitives[p].positions[v]));
+          e1_sum += e, rep.e1_max = std::max(rep.e1_max, e);
+          ++rep.vertices_bound;
+        }
+      }
+      // Skin weights of the control vertices from the dense mesh's nearest surface point.
+      if (skin != kInvalidIndex) {
+        TriangleDistanceTree tree;
+        std::vector<std::uint32_t> tris;
+        for (std::size_t t : component_tris[c]) {
+          for (int k = 0; k < 3; ++k) {
+            tris.push_back(
+                static_cast<std::uint32_t>(local[triangles[t + static_cast<std::size_t>(k)]]));
+          }
+        }
+        tree.Build(dense.positions, tris);
+        std::vector<std::vector<Influence>> influences(global.size());
+        for (std::size_t i = 0; i < global.size(); ++i) {
+          const VertexRef& r = representative[static_cast<std::size_t>(global[i])];
+          influences[i] =
+              VertexInfluences(mesh.primitives[r.primitive], static_cast<std::size_t>(r.vertex));
+        }
+        const std::size_t nc = surf.rest_positions.size();
+        part.control_joints.resize(nc);
+        part.control_weights.resize(nc);
+        for (std::size_t v = 0; v < nc; ++v) {
+          const ClosestPoint cp = tree.Query(surf.rest_positions[v]);
+          const std::size_t t = static_cast<std::size_t>(cp.triangle) * 3;
+          BlendInfluences(influences[tris[t]], influences[tris[t + 1]], influences[tris[t + 2]],
+                          cp.barycentric, &part.control_joints[v], &part.control_weights[v]);
+        }
+      }
+      part.fit.points = dense.num_vertices();
+      part.fit.triangles = dense.num_faces();
+      part.fit.points_outside = fr.points_outside;
+      part.fit.points_not_converged = fr.points_not_converged;
+      part.fit.scale = fr.scale;
+      part.fit.e1_mean = part_sum / static_cast<double>(global.size()) / fr.scale;
+      part.fit.e1_max = part_max / fr.scale;
+      part.fit.hausdorff = fr.error.hausdorff;
+      part.fit.coefficients = fr.coefficients;
+      part.fit.levels = fr.max_levels;
+      ch.parts.push_back(std::move(part));
+      ++rep.parts_fitted;
+    }
+  }
+  rep.e1_mean = rep.vertices_bound > 0 ? e1_sum / static_cast<double>(rep.vertices_bound) : 0.0;
+  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  *out = std::move(ch);
+  if (report) *report = rep;
+  return Status::Ok();
+}
+
+}  // namespace dermis

@@ -1,0 +1,287 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The fit of Yoon section 4 end to end, and its error metrics (fitting.md section 3:
+// E1 at the fitted parameters, E2 on held-out points, E3 two-sided Hausdorff, Metro style).
+#include "dermis/offline/fit/surface_fit.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "dermis/core/parallel.h"
+#include "dermis/offline/fit/control_fit.h"
+#include "dermis/offline/fit/point_fit.h"
+#include "dermis/offline/fit/surface_projection.h"
+#include "dermis/offline/geometry/triangle_distance.h"
+#include "dermis/surface/surface_evaluator.h"
+#include "dermis/surface/tessellation.h"
+
+namespace dermis {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::uint64_t SplitMix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// Gathers the samples of the given points, in point order.
+std::vector<ChartSample> GatherSamples(const std::vector<PointFit>& fits, bool optimized) {
+  std::vector<ChartSample> samples;
+  samples.reserve(fits.size() * 4);
+  for (const PointFit& f : fits) {
+    if (f.status == PointFitStatus::kOutside) continue;
+    if (optimized) {
+      // Points whose solve failed (kNotConverged) have no optimised samples: they lie where
+      // the detail folds over N~, and their per-chart projections contradict each other and
+      // their neighbours, so they are left out of the optimised fit (still measured by E1).
+      samples.insert(samples.end(), f.optimized, f.optimized + f.num_optimized);
+    } else {
+      samples.insert(samples.end(), f.projected, f.projected + f.num_projected);
+    }
+  }
+  return samples;
+}
+
+std::unique_ptr<BsplineDisplacement> MakeDisplacement(const ManifoldDomain& domain,
+                                                      const std::vector<ChartSample>& samples,
+                                                      const DisplacementFitOptions& options,
+                                                      Status* status) {
+  return BsplineDisplacement::Create(FitDisplacements(domain, samples, options),
+                                     domain.num_vertices(), status);
+}
+
+}  // namespace
+
+bool IsHeldOut(std::size_t i, double fraction, std::uint64_t seed) {
+  if (!(fraction > 0.0)) return false;
+  const double u = static_cast<double>(SplitMix64(seed ^ SplitMix64(i)) >> 11) * 0x1.0p-53;
+  return u < fraction;
+}
+
+Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurface* out,
+                  FitReport* report) {
+  const std::string where =
+      input.mesh && !input.mesh->source_name.empty() ? input.mesh->source_name : "input";
+  FitReport rep;
+  rep.points = static_cast<std::int64_t>(input.points.size());
+  rep.points_dropped = input.points_dropped;
+  rep.threads = ResolveThreadCount(options.threads);
+  auto progress = [&](const std::string& stage) {
+    if (options.progress) options.progress(stage);
+  };
+  if (input.points.empty()) return Status::InvalidInput(where + ": no data points to fit");
+  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  for (std::size_t i = 0; i < input.points.size(); ++i) {
+    const Vec3& p = input.points[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      return Status::InvalidInput(where + ": point " + std::to_string(i) +
+                                  " has a non-finite coordinate");
+    }
+    lo = glm::min(lo, p), hi = glm::max(hi, p);
+  }
+  const Vec3 ext = hi - lo;
+  rep.scale = std::max(ext.x, std::max(ext.y, ext.z));
+  if (!(rep.scale > 0.0)) return Status::InvalidInput(where + ": all points coincide");
+  if (!(options.holdout >= 0.0 && options.holdout < 1.0)) {
+    return Status::InvalidInput("holdout fraction must lie in [0, 1)");
+  }
+  const Clock::time_point t_total = Clock::now();
+
+  // 1. Control mesh, domain and rest patches.
+  progress("control mesh");
+  Clock::time_point t0 = Clock::now();
+  FittedSurface fitted;
+  if (input.control) {
+    fitted.control_mesh = *input.control;
+    CompactUnusedVertices(&fitted.control_mesh);
+  } else {
+    if (!input.mesh) {
+      return Status::InvalidInput(where +
+                                  ": a point cloud has no faces to build a control mesh from; "
+                                  "give one with --control-mesh");
+    }
+    ControlMeshOptions cm;
+    cm.target_vertices = options.control_vertices;
+    cm.clamp_to_full_split = options.clamp_control_vertices;
+    Status s = BuildControlMesh(*input.mesh, cm, &fitted.control_mesh);
+    if (!s.ok()) return s;
+  }
+  Status s = BuildControlSurface(fitted.control_mesh, options.domain, &fitted.surface);
+  if (!s.ok()) return s;
+  const ManifoldDomain& domain = *fitted.surface.domain;
+  const LocalPatch* patches = fitted.surface.patches.data();
+  rep.control_vertices = domain.num_vertices();
+  rep.control_faces = domain.num_faces();
+  std::vector<Vec3> fit_points, holdout_points;
+  for (std::size_t i = 0; i < input.points.size(); ++i) {
+    (IsHeldOut(i, options.holdout, options.holdout_seed) ? holdout_points : fit_points)
+        .push_back(input.points[i]);
+  }
+  if (fit_points.empty()) return Status::InvalidInput(where + ": every point was held out");
+  PointFitOptions pf;
+  pf.threads = rep.threads;
+  pf.tolerance = 1e-9 * rep.scale;
+  std::vector<PointFit> fits;
+  // A built control mesh lies on the data; moving its vertices so that the smooth domain
+  // surface follows the data leaves far smaller displacements at sharp and thin features. A
+  // given control mesh is used as is.
+  if (!input.control && options.control_fit_iterations > 0 &&
+      static_cast<double>(fit_points.size()) >=
+          options.control_fit_min_points_per_vertex * domain.num_vertices()) {
+    progress("control-vertex fit");
+    ControlFitOptions cf = options.control_fit;
+    cf.threads = rep.threads;
+    std::vector<Vec3> x = fitted.surface.control.positions;
+    for (int it = 0; it < options.control_fit_iterations; ++it) {
+      FitPoints(fitted.surface, fit_points, pf, &fits);
+      // A round that cannot be solved (no usable data) leaves the positions of the last one.
+      if (!FitControlPositions(domain, fit_points, fits, cf, &x).ok()) break;
+      fitted.surface.control.positions = x;
+      domain.FitPatches(x.data(), fitted.surface.patches.data());
+      ++rep.control_fit_rounds;
+    }
+    // A built control mesh is all quads, so its vertices are the quad mesh's.
+    fitted.control_mesh.positions = fitted.surface.control.positions;
+  }
+  rep.seconds.control_mesh = SecondsSince(t0);
+
+  // 2. Projection and optimisation of the fitted points.
+  progress("projection and optimisation");
+  t0 = Clock::now();
+  FitPoints(fitted.surface, fit_points, pf, &fits);
+  for (const PointFit& f : fits) {
+    rep.points_outside += f.status == PointFitStatus::kOutside;
+    rep.points_not_converged += f.status == PointFitStatus::kNotConverged;
+  }
+  rep.points_fitted = static_cast<std::int64_t>(fit_points.size()) - rep.points_outside;
+  rep.points_holdout = static_cast<std::int64_t>(holdout_points.size());
+  rep.seconds.projection_optimization = SecondsSince(t0);
+
+  // 3. Displacement functions.
+  progress("displacement functions");
+  t0 = Clock::now();
+  DisplacementFitOptions dopt = options.displacement;
+  dopt.threads = rep.threads;
+  fitted.displacement = MakeDisplacement(domain, GatherSamples(fits, true), dopt, &s);
+  if (!s.ok()) return s;
+  rep.seconds.displacement = SecondsSince(t0);
+  rep.seconds.total = SecondsSince(t_total);
+  rep.coefficients = fitted.displacement->num_coefficients();
+  rep.max_levels = fitted.displacement->max_levels();
+  for (std::uint8_t l : fitted.displacement->data().num_levels) {
+    if (l > 0) rep.finest_coefficients += BsplineLatticeSize(l - 1);
+  }
+
+  // 4. Error metrics, in the unit where the data's largest side is 1.
+  progress("error metrics");
+  t0 = Clock::now();
+  const Displacement* disp = fitted.displacement.get();
+  const double inv = 1.0 / rep.scale;
+  const int threads = rep.threads;
+  // E1 at the fitted parameters, and the true distance from there.
+  std::vector<double> e1(fits.size(), -1.0), closest(fits.size(), -1.0);
+  ParallelFor(threads, fits.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const PointFit& f = fits[i];
+      if (f.status == PointFitStatus::kOutside) continue;
+      SurfacePoint sp;
+      EvaluateSurface(domain, patches, disp, f.face, f.uv, &sp);
+      e1[i] = std::sqrt(glm::dot(sp.position - fit_points[i], sp.position - fit_points[i]));
+      Index face = f.face;
+      Vec2 uv = f.uv;
+      closest[i] = ClosestPointOnSurface(domain, patches, disp, fit_points[i], &face, &uv);
+    }
+  });
+  double sum = 0.0, sum2 = 0.0, mx = 0.0, sum_closest = 0.0, count = 0.0;
+  double input_to_surface = 0.0;  // Hausdorff half: data -> surface
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    if (e1[i] < 0.0) continue;
+    sum += e1[i], sum2 += e1[i] * e1[i], mx = std::max(mx, e1[i]);
+    sum_closest += closest[i];
+    input_to_surface = std::max(input_to_surface, closest[i]);
+    count += 1.0;
+  }
+  rep.error.mean = sum / count * inv;
+  rep.error.rms = std::sqrt(sum2 / count) * inv;
+  rep.error.max = mx * inv;
+  rep.error.closest_mean = sum_closest / count * inv;
+  // The paper's "without optimization": displacements fitted to the projections alone.
+  {
+    std::unique_ptr<BsplineDisplacement> unopt =
+        MakeDisplacement(domain, GatherSamples(fits, false), dopt, &s);
+    if (!s.ok()) return s;
+    std::vector<double> eu(fits.size(), -1.0);
+    ParallelFor(threads, fits.size(), [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        const PointFit& f = fits[i];
+        if (f.status == PointFitStatus::kOutside) continue;
+        SurfacePoint sp;
+        EvaluateSurface(domain, patches, unopt.get(), f.projected_face, f.projected_uv, &sp);
+        eu[i] = std::sqrt(glm::dot(sp.position - fit_points[i], sp.position - fit_points[i]));
+      }
+    });
+    double su = 0.0;
+    for (double v : eu) su += v >= 0.0 ? v : 0.0;
+    rep.error.unoptimized_mean = su / count * inv;
+  }
+  // E2: held-out points, seeded by the same projection and optimisation on the domain.
+  if (!holdout_points.empty()) {
+    std::vector<PointFit> hfits;
+    FitPoints(fitted.surface, holdout_points, pf, &hfits);
+    std::vector<double> eh(hfits.size(), -1.0);
+    ParallelFor(threads, hfits.size(), [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        Index face = hfits[i].face;
+        Vec2 uv = hfits[i].uv;
+        if (hfits[i].status == PointFitStatus::kOutside) continue;
+        eh[i] = ClosestPointOnSurface(domain, patches, disp, holdout_points[i], &face, &uv);
+      }
+    });
+    double sh = 0.0, mh = 0.0, nh = 0.0;
+    for (double v : eh) {
+      if (v < 0.0) continue;
+      sh += v, mh = std::max(mh, v), nh += 1.0;
+      input_to_surface = std::max(input_to_surface, v);
+    }
+    rep.error.holdout_mean = nh > 0.0 ? sh / nh * inv : 0.0;
+    rep.error.holdout_max = mh * inv;
+  }
+  // E3: two-sided Hausdorff against the input mesh: every data point to the surface (above),
+  // and the surface, tessellated at level 8, to the mesh.
+  if (input.mesh) {
+    TriangleDistanceTree tree;
+    tree.Build(input.mesh->positions, TriangulateFan(*input.mesh));
+    TessellationPattern pattern;
+    s = TessellationPattern::Build(domain.topology(), 8, &pattern);
+    if (!s.ok()) return s;
+    std::vector<Vec3> x(pattern.samples.size());
+    EvaluateSamples(domain, patches, disp, pattern.samples.data(), x.size(), x.data(), nullptr);
+    std::vector<double> d(x.size(), 0.0);
+    ParallelFor(threads, x.size(), [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) d[i] = tree.Query(x[i]).distance;
+    });
+    const double surface_to_input = *std::max_element(d.begin(), d.end());
+    Vec3 mlo(std::numeric_limits<double>::infinity()), mhi(-mlo);
+    for (const Vec3& p : input.mesh->positions) mlo = glm::min(mlo, p), mhi = glm::max(mhi, p);
+    const double diagonal = std::sqrt(glm::dot(mhi - mlo, mhi - mlo));
+    const double h = std::max(surface_to_input, input_to_surface);
+    rep.error.has_hausdorff = true;
+    rep.error.hausdorff = h * inv;
+    rep.error.hausdorff_percent_diagonal = 100.0 * h / diagonal;
+  }
+  rep.seconds.metrics = SecondsSince(t0);
+  fitted.point_fits = std::move(fits);
+  *out = std::move(fitted);
+  if (report) *report = rep;
+  return Status::Ok();
+}
+
+}  // namespace dermis

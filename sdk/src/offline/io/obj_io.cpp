@@ -1,0 +1,237 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Wavefront OBJ polygon reader with line-accurate errors, and an atomic OBJ writer.
+#include "dermis/offline/io/obj_io.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "dermis/core/file_io.h"
+#include "text_tokens.h"
+
+namespace dermis {
+namespace {
+
+using text::IsSpace;
+using text::Tokenize;
+
+bool ParseDouble(std::string_view s, double* out) {
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  const auto res = std::from_chars(s.data(), s.data() + s.size(), *out);
+  if (res.ec == std::errc::result_out_of_range) {
+    *out = std::numeric_limits<double>::infinity();
+    return true;
+  }
+  return res.ec == std::errc() && res.ptr == s.data() + s.size();
+}
+
+bool ParseInt(std::string_view s, long long* out) {
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  const auto res = std::from_chars(s.data(), s.data() + s.size(), *out);
+  return res.ec == std::errc() && res.ptr == s.data() + s.size();
+}
+
+void AppendDouble(std::string* out, double x) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof(buf), x);
+  out->append(buf, res.ptr);
+}
+
+// One "PREFIXx y z" line per vector.
+void AppendVectors(std::string* out, const char* prefix, const std::vector<Vec3>& vectors) {
+  for (const Vec3& p : vectors) {
+    *out += prefix;
+    AppendDouble(out, p.x);
+    *out += ' ';
+    AppendDouble(out, p.y);
+    *out += ' ';
+    AppendDouble(out, p.z);
+    *out += '\n';
+  }
+}
+
+void AppendUint(std::string* out, std::uint64_t x) {
+  char buf[24];
+  const auto res = std::to_chars(buf, buf + sizeof(buf), x);
+  out->append(buf, res.ptr);
+}
+
+}  // namespace
+
+Status ParseObj(std::string_view text, const std::string& name, PolygonMesh* mesh,
+                bool require_faces) {
+  PolygonMesh m;
+  m.source_name = name;
+  auto error = [&](int line, const std::string& what) {
+    return Status::InvalidInput(name + ":" + std::to_string(line) + ": " + what);
+  };
+  std::vector<std::string_view> tokens;
+  std::vector<Index> face;
+  std::string joined;
+  size_t pos = 0;
+  int line_no = 0;
+  while (pos < text.size()) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    const int statement_line = line_no;
+    // Line continuation: a trailing backslash joins the next line.
+    auto trim_right = [](std::string_view s) {
+      while (!s.empty() && IsSpace(s.back())) s.remove_suffix(1);
+      return s;
+    };
+    line = trim_right(line);
+    if (!line.empty() && line.back() == '\\') {
+      joined.assign(line.substr(0, line.size() - 1));
+      while (pos < text.size()) {
+        size_t e = text.find('\n', pos);
+        if (e == std::string_view::npos) e = text.size();
+        std::string_view next = trim_right(text.substr(pos, e - pos));
+        pos = e + 1;
+        ++line_no;
+        joined.push_back(' ');
+        if (!next.empty() && next.back() == '\\') {
+          joined.append(next.substr(0, next.size() - 1));
+        } else {
+          joined.append(next);
+          break;
+        }
+      }
+      line = joined;
+    }
+    const size_t hash = line.find('#');
+    if (hash != std::string_view::npos) line = line.substr(0, hash);
+    Tokenize(line, &tokens);
+    if (tokens.empty()) continue;
+    const std::string_view key = tokens[0];
+    if (key == "v") {
+      if (tokens.size() < 4) return error(statement_line, "a vertex needs 3 coordinates");
+      Vec3 p;
+      for (int k = 0; k < 3; ++k) {
+        double x;
+        if (!ParseDouble(tokens[1 + k], &x)) {
+          return error(statement_line, "'" + std::string(tokens[1 + k]) + "' is not a number");
+        }
+        if (!std::isfinite(x)) {
+          return error(statement_line,
+                       "vertex coordinate '" + std::string(tokens[1 + k]) + "' is not finite");
+        }
+        p[k] = x;
+      }
+      m.positions.push_back(p);
+      m.vertex_lines.push_back(statement_line);
+    } else if (key == "f" || key == "fo") {
+      face.clear();
+      for (size_t k = 1; k < tokens.size(); ++k) {
+        std::string_view t = tokens[k];
+        const size_t slash = t.find('/');
+        std::string_view idx = t.substr(0, slash);
+        long long value;
+        if (!ParseInt(idx, &value)) {
+          return error(statement_line, "'" + std::string(t) + "' is not a vertex index");
+        }
+        const long long count = static_cast<long long>(m.positions.size());
+        if (value == 0) return error(statement_line, "vertex index 0 (OBJ indices start at 1)");
+        if (value < 0) {
+          if (-value > count) {
+            return error(statement_line, "relative vertex index " + std::to_string(value) +
+                                             " points before the first vertex");
+          }
+          value = count + value + 1;
+        }
+        if (value > std::numeric_limits<Index>::max()) {
+          return error(statement_line, "vertex index " + std::to_string(value) + " is too large");
+        }
+        const Index v = static_cast<Index>(value - 1);
+        for (Index prev : face) {
+          if (prev == v) {
+            return error(statement_line,
+                         "the face uses vertex " + std::to_string(value) + " more than once");
+          }
+        }
+        face.push_back(v);
+      }
+      if (face.size() < 3) {
+        return error(statement_line, "a face needs at least 3 vertices, this one has " +
+                                         std::to_string(face.size()));
+      }
+      m.AddFace(face);
+      m.face_lines.push_back(statement_line);
+    }
+    // Everything else (vt, vn, vp, o, g, s, usemtl, mtllib, l, p, curves) carries nothing a
+    // control mesh needs and is skipped.
+  }
+  if (m.positions.empty()) return Status::InvalidInput(name + ": no vertices (empty mesh)");
+  if (m.num_faces() == 0 && require_faces)
+    return Status::InvalidInput(name + ": no faces (a control mesh needs polygons)");
+  for (Index f = 0; f < m.num_faces(); ++f) {
+    for (Index h = m.face_offsets[f]; h < m.face_offsets[f + 1]; ++h) {
+      if (m.face_vertices[h] >= m.num_vertices()) {
+        return error(m.face_lines[f], "vertex index " + std::to_string(m.face_vertices[h] + 1) +
+                                          " is out of range (the file has " +
+                                          std::to_string(m.num_vertices()) + " vertices)");
+      }
+    }
+  }
+  *mesh = std::move(m);
+  return Status::Ok();
+}
+
+Status ReadObj(const std::string& path, PolygonMesh* mesh, bool require_faces) {
+  std::string text;
+  const Status read = ReadFileBytes(path, "an OBJ file", &text);
+  if (!read.ok()) return read;
+  if (text.find('\0') != std::string::npos) {
+    return Status::InvalidInput(path + ": not a text OBJ file (contains NUL bytes)");
+  }
+  return ParseObj(text, path, mesh, require_faces);
+}
+
+Status WriteObj(const std::string& path, const std::vector<Vec3>& positions,
+                const std::vector<Vec3>& normals, const std::vector<std::uint32_t>& triangles,
+                const std::string& header_comment) {
+  if (!normals.empty() && normals.size() != positions.size()) {
+    return Status::InvalidInput("normal count does not match position count");
+  }
+  std::string out;
+  out.reserve(positions.size() * 100 + triangles.size() * 12);
+  if (!header_comment.empty()) out += "# " + header_comment + "\n";
+  AppendVectors(&out, "v ", positions);
+  AppendVectors(&out, "vn ", normals);
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    out += 'f';
+    for (int k = 0; k < 3; ++k) {
+      const std::uint64_t i = std::uint64_t{triangles[t + k]} + 1;
+      out += ' ';
+      AppendUint(&out, i);
+      if (!normals.empty()) {
+        out += "//";
+        AppendUint(&out, i);
+      }
+    }
+    out += '\n';
+  }
+  return WriteFileAtomically(path, out);
+}
+
+Status WritePolygonObj(const std::string& path, const PolygonMesh& mesh) {
+  std::string out;
+  AppendVectors(&out, "v ", mesh.positions);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    out += 'f';
+    for (Index h = mesh.face_offsets[f]; h < mesh.face_offsets[f + 1]; ++h) {
+      out += ' ';
+      AppendUint(&out, static_cast<std::uint64_t>(mesh.face_vertices[h]) + 1);
+    }
+    out += '\n';
+  }
+  return WriteFileAtomically(path, out);
+}
+
+}  // namespace dermis

@@ -1,0 +1,12 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The evaluation kernel (eval_kernel.h) compiled for one instruction set: generic.
+#include "runtime/kernels/eval_kernel.h"
+
+namespace dermis {
+
+void EvaluatePlanBlocks_generic(const PlanView& plan, const float* patches, std::size_t begin,
+                                std::size_t end, const PlanOutput& out) {
+  plan_kernel::EvaluateBlocks(plan, patches, begin, end, out);
+}
+
+}  // namespace dermis

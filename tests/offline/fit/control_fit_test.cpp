@@ -1,0 +1,219 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The control-vertex fit: the linear stencil of the domain surface against the evaluator, exact
+// recovery of a control mesh from points on its own surface, thread independence, and its use
+// in FitSurface (a built control mesh moves towards the data, a given one never moves).
+#include "dermis/offline/fit/control_fit.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <random>
+#include <vector>
+
+#include "dermis/offline/fit/surface_fit.h"
+#include "dermis/offline/geometry/builtin_meshes.h"
+#include "dermis/surface/surface_evaluator.h"
+#include "test_meshes.h"
+
+using namespace dermis;
+using namespace dermis::test;
+
+namespace {
+
+// Face coordinates that exercise the one-chart corners, the edges and the blend zones.
+std::vector<Vec2> TestCoordinates() {
+  std::vector<Vec2> uv = {{0.0, 0.0},     {1.0, 0.0}, {1.0, 1.0},  {0.0, 1.0},   {0.5, 0.5},
+                          {0.005, 0.003}, {0.5, 0.0}, {0.0, 0.37}, {0.999, 0.5}, {0.25, 0.75}};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 20; ++i) uv.emplace_back(u(rng), u(rng));
+  return uv;
+}
+
+// Points on the domain surface of `positions` at a grid of face coordinates, with their exact
+// parameters as optimised fits.
+void SampleDomain(const ControlSurface& cs, const std::vector<Vec3>& positions, int n,
+                  std::vector<Vec3>* points, std::vector<PointFit>* fits) {
+  std::vector<LocalPatch> patches(positions.size());
+  cs.domain->FitPatches(positions.data(), patches.data());
+  for (Index f = 0; f < cs.domain->num_faces(); ++f) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        PointFit pf;
+        pf.status = PointFitStatus::kOptimized;
+        pf.face = f;
+        pf.uv = Vec2((i + 0.5) / n, (j + 0.5) / n);
+        SurfacePoint sp;
+        REQUIRE(EvaluateSurface(*cs.domain, patches.data(), nullptr, f, pf.uv, &sp));
+        points->push_back(sp.position);
+        fits->push_back(pf);
+      }
+    }
+  }
+}
+
+double MaxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double d = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, glm::length(a[i] - b[i]));
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("control fit: the stencil reproduces the domain surface") {
+  for (const char* name : {"cube", "house", "prism7", "torus", "grid", "octahedron"}) {
+    PolygonMesh mesh = Builtin(name);
+    Perturb(&mesh, 0.05, 11);
+    const ControlSurface cs = Build(mesh);
+    const ManifoldDomain& domain = *cs.domain;
+    const std::vector<Vec3>& x = cs.control.positions;
+    std::vector<std::pair<Index, double>> st;
+    double worst = 0.0;
+    for (Index f = 0; f < domain.num_faces(); ++f) {
+      for (Vec2 uv : TestCoordinates()) {
+        SurfacePoint sp;
+        REQUIRE(EvaluateSurface(domain, cs.patches.data(), nullptr, f, uv, &sp));
+        st.clear();
+        REQUIRE(DomainSurfaceStencil(domain, f, uv, &st));
+        Vec3 q(0.0);
+        double sum = 0.0;
+        for (const auto& [v, w] : st) q += w * x[v], sum += w;
+        worst = std::max(worst, glm::length(q - sp.position));
+        // Affine invariance of the surface: the weights sum to 1.
+        CHECK(sum == Approx(1.0).margin(1e-12));
+      }
+    }
+    INFO(name);
+    CHECK(worst < 1e-12);
+  }
+  std::vector<std::pair<Index, double>> st;
+  const ControlSurface cs = Build(Builtin("cube"));
+  CHECK_FALSE(DomainSurfaceStencil(*cs.domain, -1, Vec2(0.5), &st));
+  CHECK_FALSE(DomainSurfaceStencil(*cs.domain, 0, Vec2(1.5, 0.5), &st));
+  CHECK(st.empty());
+}
+
+TEST_CASE("control fit: recovers the control mesh whose surface was sampled") {
+  for (const char* name : {"house", "prism7", "grid"}) {
+    PolygonMesh mesh = Builtin(name);
+    Perturb(&mesh, 0.05, 3);
+    const ControlSurface cs = Build(mesh);
+    const std::vector<Vec3> truth = cs.control.positions;
+    std::vector<Vec3> points;
+    std::vector<PointFit> fits;
+    SampleDomain(cs, truth, 8, &points, &fits);
+    // Start away from the truth; each damped step is a contraction towards it.
+    std::vector<Vec3> x = truth;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-0.05, 0.05);
+    for (Vec3& p : x) p += Vec3(u(rng), u(rng), u(rng));
+    const double start = MaxDistance(x, truth);
+    ControlFitOptions options;
+    options.threads = 1;
+    REQUIRE(FitControlPositions(*cs.domain, points, fits, options, &x).ok());
+    const double one_step = MaxDistance(x, truth);
+    for (int it = 0; it < 20; ++it) {
+      REQUIRE(FitControlPositions(*cs.domain, points, fits, options, &x).ok());
+    }
+    INFO(name << ": start " << start << ", after one step " << one_step << ", after 21 "
+              << MaxDistance(x, truth));
+    CHECK(one_step < 0.1 * start);
+    CHECK(MaxDistance(x, truth) < 1e-9);
+  }
+}
+
+TEST_CASE("control fit: the same result whatever the thread count, and bad sizes refused") {
+  PolygonMesh mesh = Builtin("house");
+  Perturb(&mesh, 0.05, 9);
+  const ControlSurface cs = Build(mesh);
+  std::vector<Vec3> points;
+  std::vector<PointFit> fits;
+  SampleDomain(cs, cs.control.positions, 6, &points, &fits);
+  // Noisy data so the robust weights take part.
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-0.01, 0.01);
+  for (Vec3& p : points) p += Vec3(u(rng), u(rng), u(rng));
+  points[3] += Vec3(0.5, 0.0, 0.0);  // an outlier
+  std::vector<Vec3> results[3];
+  for (int threads : {1, 2, 3}) {
+    std::vector<Vec3> x = cs.control.positions;
+    ControlFitOptions options;
+    options.threads = threads;
+    REQUIRE(FitControlPositions(*cs.domain, points, fits, options, &x).ok());
+    results[threads - 1] = x;
+  }
+  for (int k = 1; k < 3; ++k) {
+    REQUIRE(results[k].size() == results[0].size());
+    CHECK(std::memcmp(results[k].data(), results[0].data(), results[0].size() * sizeof(Vec3)) == 0);
+  }
+  std::vector<Vec3> x(2);
+  const Status s = FitControlPositions(*cs.domain, points, fits, ControlFitOptions{}, &x);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("sizes") != std::string::npos);
+}
+
+TEST_CASE("control fit: a built control mesh moves towards the data, a given one stays") {
+  // A dense, finely bumped sphere-like mesh: a subdivided octahedron pushed onto the sphere.
+  PolygonMesh dense = Builtin("octahedron");
+  for (int round = 0; round < 4; ++round) {
+    PolygonMesh next;
+    next.source_name = "dense sphere";
+    next.positions = dense.positions;
+    std::map<std::pair<Index, Index>, Index> mid;
+    auto midpoint = [&](Index a, Index b) {
+      const auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      next.positions.push_back(0.5 * (dense.positions[a] + dense.positions[b]));
+      return mid[key] = next.num_vertices() - 1;
+    };
+    for (Index f = 0; f < dense.num_faces(); ++f) {
+      const Index* v = dense.face_vertices.data() + dense.face_offsets[f];
+      const Index a = midpoint(v[0], v[1]), b = midpoint(v[1], v[2]), c = midpoint(v[2], v[0]);
+      next.AddFace({v[0], a, c});
+      next.AddFace({a, v[1], b});
+      next.AddFace({c, b, v[2]});
+      next.AddFace({a, b, c});
+    }
+    dense = next;
+  }
+  for (Vec3& p : dense.positions) p /= glm::length(p);
+  FitInput input;
+  input.points = dense.positions;
+  input.mesh = &dense;
+  FitOptions options;
+  options.control_vertices = 60;
+  options.holdout = 0.0;
+  options.threads = 2;
+  // Mean distance from the data to the domain surface (no displacement) at the fitted
+  // parameters.
+  auto domain_error = [&](const FittedSurface& f) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < f.point_fits.size(); ++i) {
+      const PointFit& pf = f.point_fits[i];
+      if (pf.status == PointFitStatus::kOutside) continue;
+      SurfacePoint sp;
+      EvaluateSurface(*f.surface.domain, f.surface.patches.data(), nullptr, pf.face, pf.uv, &sp);
+      sum += glm::length(sp.position - input.points[i]), ++n;
+    }
+    return sum / static_cast<double>(n);
+  };
+  FittedSurface plain, fitted;
+  FitReport report;
+  options.control_fit_iterations = 0;
+  REQUIRE(FitSurface(input, options, &plain, &report).ok());
+  options.control_fit_iterations = 2;
+  REQUIRE(FitSurface(input, options, &fitted, &report).ok());
+  INFO("domain error without " << domain_error(plain) << ", with " << domain_error(fitted));
+  CHECK(domain_error(fitted) < 0.5 * domain_error(plain));
+  CHECK(fitted.control_mesh.positions == fitted.surface.control.positions);
+  // A given control mesh is used as is.
+  PolygonMesh given = plain.control_mesh;
+  input.control = &given;
+  FittedSurface kept;
+  REQUIRE(FitSurface(input, options, &kept, &report).ok());
+  CHECK(kept.surface.control.positions == given.positions);
+}

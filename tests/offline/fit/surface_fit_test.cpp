@@ -1,0 +1,349 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Projection, the common-displacement solve, the whole fit on a synthetic shape with a known
+// surface, .dsurf round trips, determinism across threads and bad inputs.
+#include "dermis/offline/fit/surface_fit.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "dermis/dsurf/dsurf.h"
+#include "dermis/offline/build/control_mesh.h"
+#include "dermis/offline/fit/surface_projection.h"
+#include "dermis/offline/geometry/triangle_distance.h"
+#include "dermis/offline/io/point_input.h"
+#include "dermis/surface/surface_evaluator.h"
+#include "dermis/surface/tessellation.h"
+#include "test_meshes.h"
+
+using namespace dermis;
+using namespace dermis::test;
+
+namespace {
+
+// A bumpy sphere: radius 1 + a sin(3 theta) sin(2 phi) around the origin.
+Vec3 Bumpy(double theta, double phi, double a) {
+  const double r = 1.0 + a * std::sin(3.0 * theta) * std::sin(2.0 * phi);
+  return r * Vec3(std::sin(phi) * std::cos(theta), std::sin(phi) * std::sin(theta), std::cos(phi));
+}
+
+// A dense triangle mesh of the bumpy sphere (latitude-longitude grid, poles as fans).
+PolygonMesh BumpySphereMesh(int n_theta, int n_phi, double a) {
+  PolygonMesh m;
+  m.source_name = "bumpy sphere";
+  const double pi = 3.14159265358979323846;
+  m.positions.push_back(Bumpy(0.0, 0.0, a));
+  for (int j = 1; j < n_phi; ++j) {
+    for (int i = 0; i < n_theta; ++i) {
+      m.positions.push_back(Bumpy(2 * pi * i / n_theta, pi * j / n_phi, a));
+    }
+  }
+  m.positions.push_back(Bumpy(0.0, pi, a));
+  const Index south = m.num_vertices() - 1;
+  auto at = [&](int j, int i) { return 1 + (j - 1) * n_theta + (i % n_theta); };
+  for (int i = 0; i < n_theta; ++i) m.AddFace({0, at(1, i), at(1, i + 1)});
+  for (int j = 1; j + 1 < n_phi; ++j) {
+    for (int i = 0; i < n_theta; ++i) {
+      m.AddFace({at(j, i), at(j + 1, i), at(j + 1, i + 1)});
+      m.AddFace({at(j, i), at(j + 1, i + 1), at(j, i + 1)});
+    }
+  }
+  for (int i = 0; i < n_theta; ++i) m.AddFace({south, at(n_phi - 1, i + 1), at(n_phi - 1, i)});
+  return m;
+}
+
+PolygonMesh Cube(double half) {
+  PolygonMesh m = Builtin("cube");
+  for (Vec3& p : m.positions) p *= half;  // builtin cube is [-1, 1]^3
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("fit: projection converges on an analytic patch") {
+  LocalPatch patch;
+  patch.coeff[0][0] = Vec3(0.1, -0.2, 0.3);
+  patch.coeff[1][0] = Vec3(1.0, 0.1, 0.0);
+  patch.coeff[0][1] = Vec3(0.0, 1.0, 0.2);
+  patch.coeff[2][0] = Vec3(0.0, 0.0, 0.4);
+  patch.coeff[0][2] = Vec3(0.0, 0.0, -0.3);
+  patch.coeff[1][1] = Vec3(0.0, 0.0, 0.25);
+  patch.coeff[2][2] = Vec3(0.05, 0.0, 0.0);
+  Lcg rng(5);
+  for (int n = 0; n < 200; ++n) {
+    const Vec2 z(rng.Uniform(-0.5, 0.5), rng.Uniform(-0.5, 0.5));
+    PatchFrame f;
+    EvaluatePatchFrame(patch, z, &f);
+    const double d = rng.Uniform(-0.1, 0.1);  // within the focal distance
+    const Vec3 p = f.p + d * f.n;
+    const Vec2 guess = z + Vec2(rng.Uniform(-0.15, 0.15), rng.Uniform(-0.15, 0.15));
+    const Vec2 found = ProjectOntoPatch(patch, p, guess, 20);
+    CHECK(found.x == Approx(z.x).margin(1e-9));
+    CHECK(found.y == Approx(z.y).margin(1e-9));
+  }
+}
+
+TEST_CASE("fit: the common-displacement solve inverts Q + delta N") {
+  PolygonMesh torus = Builtin("torus");
+  Perturb(&torus, 0.05, 9);
+  ControlSurface s = Build(torus);
+  const ManifoldDomain& domain = *s.domain;
+  Lcg rng(17);
+  int solved = 0;
+  for (int n = 0; n < 200; ++n) {
+    const Index face = static_cast<Index>(rng.Next() * domain.num_faces());
+    const Vec2 uv(rng.Uniform(0.02, 0.98), rng.Uniform(0.02, 0.98));
+    const int a = DominantCorner(uv);
+    const Index v = domain.topology().face_vertex(face, a);
+    DomainJet jet;
+    REQUIRE(EvaluateDomainJet(domain, s.patches.data(), v, domain.FaceToChart(face, a, uv), &jet));
+    const double delta = rng.Uniform(-0.02, 0.02);
+    const Vec3 p = jet.q + delta * jet.n;
+    // Start from a nearby corner's chart, off by a little.
+    const Vec2 z0 =
+        domain.FaceToChart(face, a, glm::clamp(uv + Vec2(0.05, -0.04), Vec2(0.0), Vec2(1.0)));
+    const CommonDisplacementSolution sol =
+        SolveCommonDisplacement(domain, s.patches.data(), p, v, z0, 0.0, 1e-12);
+    if (!sol.converged) continue;
+    ++solved;
+    SurfacePoint sp;
+    // Same point of the surface (possibly expressed in a neighbouring face).
+    REQUIRE(sol.residual <= 1e-12);
+    CHECK(sol.delta == Approx(delta).margin(1e-9));
+    DomainJet check;
+    const int b = DominantCorner(sol.uv);
+    REQUIRE(EvaluateDomainJet(domain, s.patches.data(), domain.topology().face_vertex(sol.face, b),
+                              domain.FaceToChart(sol.face, b, sol.uv), &check));
+    CHECK(glm::length(check.q - jet.q) < 1e-9);
+  }
+  CHECK(solved >= 190);
+}
+
+TEST_CASE("fit: domain jet derivatives match finite differences") {
+  PolygonMesh house = Builtin("house");
+  Perturb(&house, 0.05, 4);
+  ControlSurface s = Build(house);
+  const ManifoldDomain& domain = *s.domain;
+  Lcg rng(23);
+  for (int n = 0; n < 100; ++n) {
+    const Index face = static_cast<Index>(rng.Next() * domain.num_faces());
+    const Vec2 uv(rng.Uniform(0.1, 0.9), rng.Uniform(0.1, 0.9));
+    const int a = DominantCorner(uv);
+    const Index v = domain.topology().face_vertex(face, a);
+    const Vec2 z = domain.FaceToChart(face, a, uv);
+    DomainJet j, jx0, jx1, jy0, jy1;
+    const double h = 1e-6;
+    REQUIRE(EvaluateDomainJet(domain, s.patches.data(), v, z, &j));
+    REQUIRE(EvaluateDomainJet(domain, s.patches.data(), v, z - Vec2(h, 0), &jx0));
+    REQUIRE(EvaluateDomainJet(domain, s.patches.data(), v, z + Vec2(h, 0), &jx1));
+    REQUIRE(EvaluateDomainJet(domain, s.patches.data(), v, z - Vec2(0, h), &jy0));
+    REQUIRE(EvaluateDomainJet(domain, s.patches.data(), v, z + Vec2(0, h), &jy1));
+    CHECK(glm::length((jx1.q - jx0.q) / (2 * h) - j.qx) < 1e-5);
+    CHECK(glm::length((jy1.q - jy0.q) / (2 * h) - j.qy) < 1e-5);
+    CHECK(glm::length((jx1.n - jx0.n) / (2 * h) - j.nx) < 1e-4);
+    CHECK(glm::length((jy1.n - jy0.n) / (2 * h) - j.ny) < 1e-4);
+    // Q agrees with the runtime evaluator.
+    SurfacePoint sp;
+    REQUIRE(EvaluateSurface(domain, s.patches.data(), nullptr, j.face, j.uv, &sp));
+    CHECK(glm::length(sp.position - j.q) < 1e-12);
+  }
+}
+
+TEST_CASE("fit: a bumpy sphere over a cube control mesh is recovered") {
+  const PolygonMesh dense = BumpySphereMesh(160, 80, 0.05);
+  const PolygonMesh control = Cube(0.62);
+  FitInput input;
+  input.points = dense.positions;
+  input.mesh = &dense;
+  input.control = &control;
+  FitOptions options;
+  options.threads = 2;
+  FittedSurface fitted;
+  FitReport report;
+  const Status s = FitSurface(input, options, &fitted, &report);
+  REQUIRE(s.ok());
+  INFO("E1 " << report.error.mean << " held out " << report.error.holdout_mean << " hausdorff "
+             << report.error.hausdorff << " outside " << report.points_outside);
+  CHECK(report.points == dense.num_vertices());
+  CHECK(report.points_outside == 0);
+  CHECK(report.control_vertices == 8);
+  CHECK(report.error.unoptimized_mean > report.error.mean);
+  // Unit: the sphere's largest side is about 2, so 1e-3 is 0.1% of the size; the bumps are 5%.
+  CHECK(report.error.mean < 2e-4);
+  CHECK(report.error.holdout_mean < 1e-3);
+  CHECK(report.error.hausdorff < 1e-2);
+  // Independently: fresh points of the known shape lie close to the fitted surface.
+  TessellationPattern pattern;
+  REQUIRE(TessellationPattern::Build(fitted.surface.domain->topology(), 24, &pattern).ok());
+  std::vector<Vec3> x(pattern.samples.size());
+  REQUIRE(EvaluateSamples(*fitted.surface.domain, fitted.surface.patches.data(),
+                          fitted.displacement.get(), pattern.samples.data(), x.size(), x.data(),
+                          nullptr));
+  double worst = 0.0;
+  for (const Vec3& p : x) {
+    // Distance to the analytic surface along the radius (a tight bound for small bumps).
+    const double r = glm::length(p);
+    const double phi = std::acos(p.z / r), theta = std::atan2(p.y, p.x);
+    worst = std::max(worst, std::abs(r - glm::length(Bumpy(theta, phi, 0.05))));
+  }
+  CHECK(worst < 5e-3);
+}
+
+TEST_CASE("fit: a control-mesh target equal to the full split keeps every triangle") {
+  // A closed octahedron of 8 triangles: the full split has V + E + F = 6 + 12 + 8 = 26 quad
+  // vertices. Asking for exactly that (or more, which is refused) must not simplify at all.
+  PolygonMesh mesh;
+  mesh.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const int faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                           {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (const auto& f : faces) mesh.AddFace({f[0], f[1], f[2]});
+  ControlMeshOptions options;
+  options.target_vertices = 26;
+  PolygonMesh control;
+  const Status s = BuildControlMesh(mesh, options, &control);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  CHECK(control.num_vertices() == 26);
+  CHECK(control.num_faces() == 24);
+  options.target_vertices = 27;
+  CHECK_FALSE(BuildControlMesh(mesh, options, &control).ok());
+  // Character fitting lowers a larger target to the full split instead (counted after dropping
+  // degenerate triangles, as the control mesh is).
+  options.clamp_to_full_split = true;
+  options.target_vertices = 1000;
+  REQUIRE(BuildControlMesh(mesh, options, &control).ok());
+  CHECK(control.num_vertices() == 26);
+}
+
+TEST_CASE("fit: .dsurf round trip is bit-exact and threads do not change the bytes") {
+  const PolygonMesh dense = BumpySphereMesh(60, 30, 0.05);
+  FitInput input;
+  input.points = dense.positions;
+  input.mesh = &dense;
+  FitOptions options;
+  options.control_vertices = 60;
+  std::string bytes[2];
+  for (int t = 0; t < 2; ++t) {
+    options.threads = t + 1;
+    FittedSurface fitted;
+    FitReport report;
+    REQUIRE(FitSurface(input, options, &fitted, &report).ok());
+    bytes[t] = SerializeDsurf(*fitted.surface.domain, fitted.surface.control.positions.data(),
+                              fitted.displacement.get());
+    // Parse and write again: same bytes; same surface.
+    DisplacedSurface loaded;
+    REQUIRE(ParseDsurf(bytes[t], "memory", &loaded).ok());
+    CHECK(SerializeDsurf(*loaded.domain, loaded.rest_positions.data(), loaded.displacement.get()) ==
+          bytes[t]);
+    std::vector<LocalPatch> patches(loaded.rest_positions.size());
+    loaded.domain->FitPatches(loaded.rest_positions.data(), patches.data());
+    SurfacePoint a, b;
+    REQUIRE(EvaluateSurface(*fitted.surface.domain, fitted.surface.patches.data(),
+                            fitted.displacement.get(), 3, Vec2(0.3, 0.7), &a));
+    REQUIRE(EvaluateSurface(*loaded.domain, patches.data(), loaded.displacement.get(), 3,
+                            Vec2(0.3, 0.7), &b));
+    CHECK(a.position == b.position);
+  }
+  CHECK(bytes[0] == bytes[1]);
+  // Damaged files are refused with a message, never crash.
+  DisplacedSurface out;
+  Status s = ParseDsurf(bytes[0].substr(0, bytes[0].size() / 2), "half.dsurf", &out);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("half.dsurf") != std::string::npos);
+  std::string flipped = bytes[0];
+  flipped[100] = static_cast<char>(flipped[100] ^ 0x5a);
+  CHECK_FALSE(ParseDsurf(flipped, "flipped.dsurf", &out).ok());
+  CHECK_FALSE(ParseDsurf("not a dsurf file at all", "text.dsurf", &out).ok());
+  for (std::size_t cut = 0; cut < 64; ++cut)
+    CHECK_FALSE(ParseDsurf(bytes[0].substr(0, cut), "cut", &out).ok());
+  CHECK(ReadDsurf("/nonexistent/dir/x.dsurf", &out).code() == StatusCode::kIoError);
+}
+
+TEST_CASE("fit: bad inputs give clear errors") {
+  FittedSurface fitted;
+  FitReport report;
+  FitOptions options;
+  FitInput empty;
+  Status s = FitSurface(empty, options, &fitted, &report);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("no data points") != std::string::npos);
+
+  const PolygonMesh dense = BumpySphereMesh(20, 10, 0.05);
+  FitInput nan;
+  nan.points = dense.positions;
+  nan.points[5].y = std::nan("");
+  nan.mesh = &dense;
+  s = FitSurface(nan, options, &fitted, &report);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("point 5") != std::string::npos);
+
+  FitInput too_many;
+  too_many.points = dense.positions;
+  too_many.mesh = &dense;
+  options.control_vertices = 100000;
+  s = FitSurface(too_many, options, &fitted, &report);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("--control-vertices") != std::string::npos);
+
+  FitInput cloud;
+  cloud.points = dense.positions;
+  s = FitSurface(cloud, FitOptions(), &fitted, &report);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("--control-mesh") != std::string::npos);
+
+  PolygonMesh m;
+  Index dropped = 0;
+  s = ReadFitInput("/nonexistent/bunny.obj", &m, &dropped);
+  CHECK(s.code() == StatusCode::kIoError);
+  CHECK(s.message().find("/nonexistent/bunny.obj") != std::string::npos);
+  s = ReadFitInput("scan.xyz", &m, &dropped);
+  CHECK(s.code() == StatusCode::kUnsupported);
+}
+
+TEST_CASE("fit: the Stanford bunny with 540 control vertices") {
+  const std::string path = "../shared/data/scans/stanford-bunny.obj";
+  if (!std::ifstream(path)) {
+    WARN("skipped: " << path << " not found (run from the repo root with ../shared/data)");
+    return;
+  }
+  PolygonMesh mesh;
+  Index dropped = 0;
+  REQUIRE(ReadFitInput(path, &mesh, &dropped).ok());
+  CHECK(dropped == 1113);
+  CHECK(mesh.num_vertices() == 34834);
+  FitInput input;
+  input.points = mesh.positions;
+  input.mesh = &mesh;
+  input.points_dropped = dropped;
+  FitOptions options;
+  FittedSurface fitted;
+  FitReport report;
+  REQUIRE(FitSurface(input, options, &fitted, &report).ok());
+  INFO("E1 " << report.error.mean << " held out " << report.error.holdout_mean);
+  CHECK(std::abs(report.control_vertices - 540) <= 10);
+  CHECK(report.error.mean <= 1.5e-4);
+  CHECK(report.error.holdout_mean <= 3.0 * report.error.mean);
+  CHECK(report.error.unoptimized_mean > 5.0 * report.error.mean);
+  CHECK(report.points_outside < 100);
+  CHECK(report.control_fit_rounds == 2);
+  // Independently: the fitted points against the level-16 tessellation (exact
+  // point-to-triangle distances) are within the reported E1 on average.
+  TessellationPattern pattern;
+  REQUIRE(TessellationPattern::Build(fitted.surface.domain->topology(), 16, &pattern).ok());
+  std::vector<Vec3> x(pattern.samples.size());
+  REQUIRE(EvaluateSamples(*fitted.surface.domain, fitted.surface.patches.data(),
+                          fitted.displacement.get(), pattern.samples.data(), x.size(), x.data(),
+                          nullptr));
+  TriangleDistanceTree tree;
+  tree.Build(x, pattern.triangles);
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < input.points.size(); ++i) {
+    if (IsHeldOut(i, options.holdout, options.holdout_seed)) continue;
+    sum += tree.Query(input.points[i]).distance / report.scale, ++n;
+  }
+  INFO("level-16 tessellation: mean " << sum / static_cast<double>(n));
+  CHECK(sum / static_cast<double>(n) <= report.error.mean);
+}
