@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "dermis/asset/asset_pose.h"
+#include "dermis/core/parallel.h"
 #include "dermis/offline/character/character_fit.h"
 #include "dermis/offline/fit/surface_fit.h"
 #include "dermis/offline/io/point_input.h"
@@ -70,24 +71,6 @@ double TimePerCall(const std::function<void()>& fn, int trials, double min_secon
   }
   std::sort(t.begin(), t.end());
   return t[t.size() / 2];
-}
-
-// Runs fn(begin, end) over [0, n) split into `threads` contiguous ranges.
-void Parallel(int threads, std::size_t n, const std::function<void(std::size_t, std::size_t)>& fn) {
-  if (threads <= 1) {
-    fn(0, n);
-    return;
-  }
-  std::vector<std::thread> pool;
-  const std::size_t per =
-      (n + static_cast<std::size_t>(threads) - 1) / static_cast<std::size_t>(threads);
-  for (int t = 1; t < threads; ++t) {
-    const std::size_t b = std::min(n, per * static_cast<std::size_t>(t));
-    const std::size_t e = std::min(n, b + per);
-    pool.emplace_back(fn, b, e);
-  }
-  fn(0, std::min(n, per));
-  for (auto& th : pool) th.join();
 }
 
 struct Row {
@@ -332,14 +315,14 @@ int main(int argc, char** argv) {
       ob.normals = out_n.data();
       r.dermis = TimePerCall(
           [&] {
-            Parallel(threads, plan.num_blocks(), [&](std::size_t b, std::size_t e) {
+            ParallelFor(threads, plan.num_blocks(), [&](std::size_t b, std::size_t e) {
               EvaluatePlan(plan, packed.data(), b, e, ob);
             });
           },
           trials, min_seconds);
       r.osd_eval = TimePerCall(
           [&] {
-            Parallel(threads, n, [&](std::size_t b, std::size_t e) {
+            ParallelFor(threads, n, [&](std::size_t b, std::size_t e) {
               Osd::CpuEvaluator::EvalStencils(
                   cv.data(), desc, osd_p.data(), desc, osd_du.data(), desc, osd_dv.data(), desc,
                   table->GetSizes().data(), table->GetOffsets().data(),
@@ -352,7 +335,7 @@ int main(int argc, char** argv) {
       const OsdVertex* src = reinterpret_cast<const OsdVertex*>(cv.data());
       r.osd_far = TimePerCall(
           [&] {
-            Parallel(threads, n, [&](std::size_t b, std::size_t e) {
+            ParallelFor(threads, n, [&](std::size_t b, std::size_t e) {
               table->UpdateValues(src, reinterpret_cast<OsdVertex*>(osd_p.data()),
                                   static_cast<int>(b), static_cast<int>(e));
               table->UpdateDerivs(src, reinterpret_cast<OsdVertex*>(osd_du.data()),
@@ -362,7 +345,7 @@ int main(int argc, char** argv) {
           },
           trials, min_seconds);
       r.lbs = TimePerCall(
-          [&] { Parallel(threads, n, [&](std::size_t b, std::size_t e) { lbs.Skin(b, e); }); },
+          [&] { ParallelFor(threads, n, [&](std::size_t b, std::size_t e) { lbs.Skin(b, e); }); },
           trials, min_seconds);
       if (threads == 1 && SimdPathAvailable(SimdPath::kAvx2)) {
         r.generic = TimePerCall(
@@ -492,7 +475,7 @@ int main(int argc, char** argv) {
       };
       auto evaluate = [&] {
         for (std::size_t p = 0; p < outs.size(); ++p) {
-          Parallel(threads, outs[p]->plan().num_blocks(), [&](std::size_t b, std::size_t e) {
+          ParallelFor(threads, outs[p]->plan().num_blocks(), [&](std::size_t b, std::size_t e) {
             EvaluateJob job;
             job.output = outs[p].get();
             job.instance = inst.get();

@@ -49,17 +49,11 @@
 #include <vector>
 
 #include "dermis/asset/asset_validate.h"
+#include "dermis/core/path.h"
 #include "dermis/plugins/assimp.h"
 
 namespace dermis {
 namespace {
-
-std::string LowerExtension(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
-  std::string lower = ext;
-  for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return lower;
-}
 
 std::string JsonString(const std::string& s) {
   std::string out = "\"";
@@ -129,8 +123,7 @@ void SetNodeTransform(const glm::dmat4& m, AssetNode* node) {
 }
 
 std::string MimeFromHint(const std::string& hint_in) {
-  std::string hint = hint_in;
-  for (char& c : hint) c = char(std::tolower(static_cast<unsigned char>(c)));
+  std::string hint = AsciiLower(hint_in);
   if (!hint.empty() && hint[0] == '.') hint.erase(0, 1);
   if (hint == "png") return "image/png";
   if (hint == "jpg" || hint == "jpeg") return "image/jpeg";

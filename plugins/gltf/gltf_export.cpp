@@ -7,14 +7,9 @@
 // skin weights renormalised in float32 as the validator sums them (residue into the largest
 // weight, joint 0 padding), inverse bind matrices with an exact last row, and images passed
 // through as the bytes of a bufferView (tinygltf would otherwise decode and re-encode them).
-#include <fcntl.h>
-#include <sys/stat.h>
 #include <tiny_gltf.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -31,6 +26,8 @@
 #include <vector>
 
 #include "dermis/asset/asset_validate.h"
+#include "dermis/core/file_io.h"
+#include "dermis/core/path.h"
 #include "dermis/plugins/gltf.h"
 
 namespace dermis {
@@ -696,53 +693,6 @@ std::uint32_t ReadU32(const std::string& bytes, std::size_t offset) {
     v = (v << 8) | static_cast<unsigned char>(bytes[offset + static_cast<std::size_t>(i)]);
   }
   return v;
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename. On
-/// failure neither `path` nor the temporary file is left behind (an existing `path` is kept).
-Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
-  std::string name = path + ".tmp-XXXXXX";
-  const int fd = mkstemp(&name[0]);
-  if (fd < 0) {
-    return Status::IoError(path + ": cannot create a temporary file: " + std::strerror(errno));
-  }
-  const auto fail = [&](const std::string& what) {
-    const std::string reason = std::strerror(errno);
-    ::close(fd);
-    std::remove(name.c_str());
-    return Status::IoError(path + ": " + what + ": " + reason);
-  };
-  std::size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return fail("cannot write " + name);
-    }
-    written += static_cast<std::size_t>(n);
-  }
-  if (::fchmod(fd, 0644) != 0) return fail("cannot set permissions of " + name);
-  if (::fsync(fd) != 0) return fail("cannot flush " + name);
-  if (::close(fd) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(name.c_str());
-    return Status::IoError(path + ": cannot close " + name + ": " + reason);
-  }
-  if (std::rename(name.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(name.c_str());
-    return Status::IoError(path + ": cannot rename " + name + ": " + reason);
-  }
-  return Status::Ok();
-}
-
-std::string LowerExtension(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  const std::size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
 }
 
 }  // namespace

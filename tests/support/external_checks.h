@@ -1,5 +1,5 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Test support: temporary folders, files and the external JavaScript checks of tests/js (the
+// Test support: the external JavaScript checks of tests/js (the
 // Khronos glTF-Validator and three.js's GLTFLoader in Node), shared by the glTF and character
 // pipeline tests. Uses Catch2 assertions, so call it from inside a TEST_CASE.
 #pragma once
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "dermis/asset/asset.h"
+#include "support/temp_files.h"
 
 namespace dermis {
 namespace test {
@@ -20,24 +21,6 @@ namespace test {
 /// The shared third-party glTF characters (relative to the repository root, where ctest runs).
 inline const char* const kSharedGltfDir = "../shared/data/gltf/";
 
-/// A fresh folder under the system temp directory, removed with everything in it on scope exit.
-class TempDir {
- public:
-  explicit TempDir(const std::string& prefix = "dermis_test");
-  ~TempDir();
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string File(const std::string& name) const { return (path_ / name).string(); }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
-/// Whole file as bytes (REQUIREs that it opens).
-std::string ReadFile(const std::string& path);
-/// Writes `bytes` to `path` (REQUIREs success).
-void WriteFile(const std::string& path, const std::string& bytes);
 /// Runs a shell command; its exit status, or -1 if it did not exit normally.
 int Run(const std::string& command);
 

@@ -14,6 +14,7 @@
 
 #include "character_args.h"
 #include "commands.h"
+#include "dermis/core/path.h"
 #include "dermis/offline/character/character_pose.h"
 #include "dermis/offline/character/skin_transfer.h"
 #include "dermis/offline/io/obj_io.h"
@@ -41,15 +42,6 @@ struct AnimateArgs {
 int Fail(const Status& s) {
   std::fprintf(stderr, "dermis animate: error: %s\n", s.message().c_str());
   return kExitFailure;
-}
-
-bool EndsWith(const std::string& s, const std::string& suffix) {
-  if (s.size() < suffix.size()) return false;
-  for (std::size_t i = 0; i < suffix.size(); ++i) {
-    const char c = s[s.size() - suffix.size() + i];
-    if (std::tolower(static_cast<unsigned char>(c)) != suffix[i]) return false;
-  }
-  return true;
 }
 
 /// Shortest decimal form that reads back to the same double.
@@ -85,7 +77,7 @@ Status WritePosedObj(const std::string& path, const CharacterPoser& poser,
 }
 
 int RunAnimate(const AnimateArgs& a) {
-  const bool obj = EndsWith(a.output, ".obj");
+  const bool obj = LowerExtension(a.output) == ".obj";
   if (!obj && !IsGltfPath(a.output)) {
     std::fprintf(stderr,
                  "dermis animate: error: %s: the output must be .obj, .glb or .gltf\n"

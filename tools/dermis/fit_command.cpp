@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "dermis/asset/asset_validate.h"
 #include "dermis/core/file_io.h"
+#include "dermis/core/path.h"
 #include "dermis/dsurf/dsurf.h"
 #include "dermis/offline/character/character_fit.h"
 #include "dermis/offline/fit/surface_fit.h"
@@ -100,8 +101,8 @@ nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
 }
 
 bool IsScanPath(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
-  return ext == ".obj" || ext == ".OBJ" || ext == ".ply" || ext == ".PLY";
+  const std::string ext = LowerExtension(path);
+  return ext == ".obj" || ext == ".ply";
 }
 
 Json CharacterReportJson(const FitArgs& a, const Character& ch, const CharacterFitReport& r) {

@@ -21,6 +21,7 @@
 #include "commands.h"
 #include "dermis/asset/asset.h"
 #include "dermis/core/file_io.h"
+#include "dermis/core/path.h"
 #include "dermis/dsurf/dsurf.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/plugins/import.h"
@@ -35,12 +36,6 @@ struct InspectArgs {
   std::string input;
   bool json = false;
 };
-
-std::string LowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
 
 // ---------------------------------------------------------------------------------------------
 // Assets (glTF and Assimp formats).

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "dermis/asset/asset_pose.h"
 #include "dermis/core/file_io.h"
+#include "dermis/core/path.h"
 #include "dermis/offline/character/character_pose.h"
 #include "dermis/offline/character/skin_transfer.h"
 #include "dermis/offline/geometry/triangle_distance.h"
@@ -379,10 +380,8 @@ int RunRender(const RenderArgs& a) {
   if (!ParseSize(a.size, &width, &height)) {
     return Usage("--size '" + a.size + "' must be WxH with 16 <= W, H <= 8192");
   }
-  std::string ext = std::filesystem::path(a.output).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".png") return Usage(a.output + ": the output must be a .png file");
+  if (LowerExtension(a.output) != ".png")
+    return Usage(a.output + ": the output must be a .png file");
   if (a.frames > 0 && a.turntable > 0) return Usage("--frames and --turntable exclude each other");
   if (!a.compare.empty() && a.turntable > 0)
     return Usage("--compare and --turntable exclude each other");

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "commands.h"
+#include "dermis/core/path.h"
 #include "dermis/dsurf/dsurf.h"
 #include "dermis/offline/build/domain_builder.h"
 #include "dermis/offline/geometry/builtin_meshes.h"
@@ -30,9 +31,7 @@ struct TessellateArgs {
   bool quiet = false;
 };
 
-bool IsDsurf(const std::string& path) {
-  return path.size() >= 6 && path.compare(path.size() - 6, 6, ".dsurf") == 0;
-}
+bool IsDsurf(const std::string& path) { return LowerExtension(path) == ".dsurf"; }
 
 int Fail(const Status& s) {
   std::fprintf(stderr, "dermis tessellate: error: %s\n", s.message().c_str());

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <thread>
 
+#include "dermis/core/parallel.h"
 #include "dermis/runtime/plan_layout.h"
 #include "dermis/surface/blend.h"
 #include "dermis/surface/chart.h"
@@ -193,22 +193,12 @@ Status EvaluationPlan::Build(const ManifoldDomain& domain, const Displacement* d
       }
     }
   };
-  unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(
-      std::min<std::size_t>(threads, std::max<std::size_t>(1, num_blocks / 64)));
-  if (threads <= 1) {
-    build_range(0, num_blocks);
-  } else {
-    std::vector<std::thread> pool;
-    const std::size_t per = (num_blocks + threads - 1) / threads;
-    for (unsigned t = 0; t < threads; ++t) {
-      const std::size_t first = std::min(num_blocks, t * per);
-      const std::size_t last = std::min(num_blocks, first + per);
-      pool.emplace_back(build_range, first, last);
-    }
-    for (auto& th : pool) th.join();
-  }
+  // At least 64 blocks per thread; every block is written by itself, so the split does not
+  // change the plan.
+  const int threads = static_cast<int>(
+      std::min<std::size_t>(static_cast<std::size_t>(ResolveThreadCount(options.threads)),
+                            std::max<std::size_t>(1, num_blocks / 64)));
+  ParallelFor(threads, num_blocks, build_range);
   *out = std::move(plan);
   return Status::Ok();
 }

@@ -15,8 +15,11 @@ namespace dermis {
 /// "PATH: read error". `kind` describes the expected file, e.g. "an OBJ file".
 Status ReadFileBytes(const std::string& path, const std::string& kind, std::string* bytes);
 
-/// Writes `bytes` to `path` through a temporary file in the same directory and renames it into
-/// place, so a reader never sees a half-written file. On failure nothing is left behind.
+/// Writes `bytes` to `path` through a temporary file in the same directory (PATH.tmp.XXXXXXXX,
+/// flushed to disk) and renames it into place, so a reader never sees a half-written file and
+/// an existing `path` stays untouched until the rename. The file gets the permissions of any
+/// new file (0666 less the process umask; the umask is never changed). On failure returns
+/// kIoError "PATH: REASON" and nothing is left behind. Safe to call from several threads.
 Status WriteFileAtomically(const std::string& path, std::string_view bytes);
 
 }  // namespace dermis

@@ -11,29 +11,15 @@
 #include <sstream>
 
 #include "dermis/core/file_io.h"
-#include "text_tokens.h"
+#include "offline/io/text_tokens.h"
 
 namespace dermis {
 namespace {
 
 using text::IsSpace;
+using text::ParseDouble;
+using text::ParseInt;
 using text::Tokenize;
-
-bool ParseDouble(std::string_view s, double* out) {
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  const auto res = std::from_chars(s.data(), s.data() + s.size(), *out);
-  if (res.ec == std::errc::result_out_of_range) {
-    *out = std::numeric_limits<double>::infinity();
-    return true;
-  }
-  return res.ec == std::errc() && res.ptr == s.data() + s.size();
-}
-
-bool ParseInt(std::string_view s, long long* out) {
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  const auto res = std::from_chars(s.data(), s.data() + s.size(), *out);
-  return res.ec == std::errc() && res.ptr == s.data() + s.size();
-}
 
 void AppendDouble(std::string* out, double x) {
   char buf[32];

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "dermis/core/file_io.h"
-#include "text_tokens.h"
+#include "offline/io/text_tokens.h"
 
 namespace dermis {
 namespace {
@@ -101,6 +101,8 @@ struct Header {
 };
 
 using text::IsSpace;
+using text::ParseDouble;
+using text::ParseInt;
 using text::Tokenize;
 
 // Returns the line that starts at *pos (without its '\n') and moves *pos past the '\n'.
@@ -115,25 +117,6 @@ std::string_view NextLine(std::string_view text, size_t* pos) {
 std::string_view TrimRight(std::string_view s) {
   while (!s.empty() && IsSpace(s.back())) s.remove_suffix(1);
   return s;
-}
-
-bool ParseDouble(std::string_view s, double* out) {
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  const auto res = std::from_chars(s.data(), s.data() + s.size(), *out);
-  if (res.ptr != s.data() + s.size()) return false;
-  if (res.ec == std::errc::result_out_of_range) {
-    // Overflow (-> +-inf) or underflow (-> a tiny value or 0); strtod tells them apart.
-    const std::string copy(s);
-    *out = std::strtod(copy.c_str(), nullptr);
-    return true;
-  }
-  return res.ec == std::errc();
-}
-
-bool ParseInt(std::string_view s, long long* out) {
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  const auto res = std::from_chars(s.data(), s.data() + s.size(), *out);
-  return res.ec == std::errc() && res.ptr == s.data() + s.size();
 }
 
 bool ParseCount(std::string_view s, std::uint64_t* out) {

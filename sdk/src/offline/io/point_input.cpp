@@ -2,30 +2,23 @@
 // Fit input: OBJ or PLY, a mesh or a point cloud (paper section 4 fits point clouds).
 #include "dermis/offline/io/point_input.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 
+#include "dermis/core/path.h"
 #include "dermis/offline/io/obj_io.h"
 #include "dermis/offline/io/ply_io.h"
 
 namespace dermis {
 
 Status ReadFitInput(const std::string& path, PolygonMesh* mesh, Index* dropped) {
-  std::string ext;
-  const std::size_t dot = path.find_last_of('.');
-  if (dot != std::string::npos && path.find_first_of("/\\", dot) == std::string::npos) {
-    ext = path.substr(dot + 1);
-  }
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = LowerExtension(path);
   Status s;
-  if (ext == "obj") {
+  if (ext == ".obj") {
     s = ReadObj(path, mesh, /*require_faces=*/false);
-  } else if (ext == "ply") {
+  } else if (ext == ".ply") {
     s = ReadPly(path, mesh);
   } else {
-    return Status::Unsupported(path + ": unsupported file type '." + ext +
+    return Status::Unsupported(path + ": unsupported file type '" + (ext.empty() ? "." : ext) +
                                "' (use .obj or .ply; import other formats with the plugins)");
   }
   if (!s.ok()) return s;

@@ -1,5 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Whitespace tokenising shared by the text readers (OBJ, ASCII PLY). Internal header.
+// Tokens and numbers of the text readers (OBJ, ASCII PLY): one tokeniser and one number
+// parser, so that every text format reads the same token as the same value. Internal header.
 #pragma once
 
 #include <cstddef>
@@ -22,5 +23,16 @@ inline void Tokenize(std::string_view line, std::vector<std::string_view>* token
     i = j;
   }
 }
+
+/// Reads the whole token as a decimal floating-point number (an optional sign, '+' included,
+/// digits with an optional point and exponent; "inf" and "nan" as std::from_chars reads them),
+/// locale-independently and correctly rounded. A magnitude beyond the doubles reads as the
+/// IEEE result of rounding: +-infinity above DBL_MAX, +-0 below half the smallest subnormal
+/// (as strtod gives, so "1e-400" is 0, not infinity). False if the token is not a number.
+bool ParseDouble(std::string_view token, double* out);
+
+/// Reads the whole token as a decimal integer (an optional sign, '+' included); false if it
+/// is not one or does not fit.
+bool ParseInt(std::string_view token, long long* out);
 
 }  // namespace dermis::text
