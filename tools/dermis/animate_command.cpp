@@ -85,9 +85,8 @@ int RunAnimate(const AnimateArgs& a) {
                  a.output.c_str());
     return kExitUsage;
   }
-  std::string bytes;
   Character ch;
-  Status s = ReadCharacterFile(a.input, &bytes, &ch);
+  Status s = ReadCharacter(a.input, &ch);
   if (!s.ok()) return Fail(s);
   int clip = -1;
   s = ResolveClip(ch.asset, a.input, a.clip, &clip);

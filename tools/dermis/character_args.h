@@ -1,6 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// What `dermis export` and `dermis animate` share: reading a .dsurf of either version as a
-// character, and the names of deformers and pose modes on the command line.
+// What `dermis export`, `animate` and `render` share: the names of deformers and pose modes on
+// the command line, the evaluation options, clips by name or index.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -13,10 +13,6 @@
 #include "dermis/runtime/character.h"
 
 namespace dermis::cli {
-
-/// Reads `path` (a version-1 surface or a version-2 character) into `out`; `bytes` receives the
-/// file's bytes. Errors name the file.
-Status ReadCharacterFile(const std::string& path, std::string* bytes, Character* out);
 
 /// The deformer named "sweep", "lbs" or "dqs" (the names the CLI accepts).
 DeformerKind DeformerFromName(const std::string& name);

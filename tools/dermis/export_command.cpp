@@ -87,7 +87,7 @@ int RunExport(const ExportArgs& a) {
   }
   std::string bytes;
   Character ch;
-  Status s = ReadCharacterFile(a.input, &bytes, &ch);
+  Status s = ReadCharacter(a.input, &ch, nullptr, &bytes);
   if (!s.ok()) return Fail(s);
   CharacterExportOptions options;
   options.level = a.level;

@@ -207,18 +207,16 @@ Json DescribeAsset(const Asset& asset) {
 /// report["asset"] from the source asset it stores.
 Status InspectDsurfBytes(std::string_view bytes, const std::string& name, bool with_asset,
                          Json* report) {
-  if (DsurfFileVersion(bytes) == kCharacterDsurfVersion) {
-    Character ch;
-    const Status s = ParseCharacter(bytes, name, &ch);
-    if (!s.ok()) return s;
-    if (with_asset) (*report)["asset"] = DescribeAsset(ch.asset);
-    (*report)["character"] = DescribeCharacter(ch);
+  Character ch;
+  std::uint32_t version = 0;
+  const Status s = ParseCharacter(bytes, name, &ch, &version);
+  if (!s.ok()) return s;
+  if (version == kDsurfVersion) {
+    (*report)["surface"] = DescribeSurface(ch.parts[0].surface);
     return Status::Ok();
   }
-  DisplacedSurface surface;
-  const Status s = ParseDsurf(bytes, name, &surface);
-  if (!s.ok()) return s;
-  (*report)["surface"] = DescribeSurface(surface);
+  if (with_asset) (*report)["asset"] = DescribeAsset(ch.asset);
+  (*report)["character"] = DescribeCharacter(ch);
   return Status::Ok();
 }
 

@@ -174,7 +174,7 @@ bool ParseSize(const std::string& s, int* w, int* h) {
 
 // A version-1 surface (no pose): one view per displacement level of --series, or per turntable
 // angle. Returns an exit status.
-int RenderSurface(const RenderArgs& a, const std::string& bytes, render::View* view_out,
+int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::View* view_out,
                   std::vector<render::Image>* images) {
   render::View& view = *view_out;
   const bool error_map = a.heatmap == "error";
@@ -205,8 +205,6 @@ int RenderSurface(const RenderArgs& a, const std::string& bytes, render::View* v
       at = comma + 1;
     }
   }
-  DisplacedSurface surface;
-  if (const Status s = ParseDsurf(bytes, a.input, &surface); !s.ok()) return Fail(s);
   std::vector<std::vector<render::Mesh>> surfaces(levels.size());
   for (std::size_t k = 0; k < levels.size(); ++k) {
     const Status s = SurfaceMesh(a, surface, levels[k], &surfaces[k]);
@@ -275,16 +273,13 @@ int RenderSurface(const RenderArgs& a, const std::string& bytes, render::View* v
 
 // A character posed at --time or over --frames of a clip, with --compare's deformer as a second
 // row. Returns an exit status.
-int RenderCharacter(const RenderArgs& a, const std::string& bytes, render::View* view_out,
+int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view_out,
                     std::vector<render::Image>* images) {
   render::View& view = *view_out;
   const bool error_map = a.heatmap == "error";
   std::vector<std::string> captions;
-  Character ch;
-  Status s = ParseCharacter(bytes, a.input, &ch);
-  if (!s.ok()) return Fail(s);
   int clip = -1;
-  s = ResolveClip(ch.asset, a.input, a.clip, &clip);
+  Status s = ResolveClip(ch.asset, a.input, a.clip, &clip);
   if (!s.ok()) return Fail(s);
   if (clip < 0 && (a.frames > 0 || (a.time_given && a.time != 0.0))) {
     return Fail(Status::InvalidInput(a.input + ": --time and --frames apply to a clip (" +
@@ -391,11 +386,13 @@ int RunRender(const RenderArgs& a) {
     const Status s = ReadFileBytes(a.input, "the input", &bytes);
     if (!s.ok()) return Fail(s);
   }
-  const std::uint32_t version = DsurfFileVersion(bytes);
-  if (version == 0) {
+  if (DsurfFileVersion(bytes) == 0) {
     return Fail(Status::InvalidInput(a.input + ": not a .dsurf file (fit a mesh or character "
                                                "with 'dermis fit' first)"));
   }
+  Character ch;
+  std::uint32_t version = 0;
+  if (const Status s = ParseCharacter(bytes, a.input, &ch, &version); !s.ok()) return Fail(s);
   render::View view;
   view.width = width;
   view.height = height;
@@ -403,8 +400,8 @@ int RunRender(const RenderArgs& a) {
   view.elevation = a.elevation;
   view.caption = a.caption;
   std::vector<render::Image> images;
-  const int rc = version == 1 ? RenderSurface(a, bytes, &view, &images)
-                              : RenderCharacter(a, bytes, &view, &images);
+  const int rc = version == kDsurfVersion ? RenderSurface(a, ch.parts[0].surface, &view, &images)
+                                          : RenderCharacter(a, ch, &view, &images);
   if (rc != kExitOk) return rc;
 
   const std::filesystem::path parent = std::filesystem::path(a.output).parent_path();

@@ -116,16 +116,11 @@ int RunValidate(const ValidateArgs& a) {
   std::string kind;
   Khronos khronos;
   if (s.ok()) {
-    const std::uint32_t version = DsurfFileVersion(bytes);
-    if (version == 1) {
-      kind = "dsurf surface";
-      DisplacedSurface surface;
-      s = ParseDsurf(bytes, a.input, &surface);
-    } else if (version >= 2) {
-      kind = "dsurf character";
+    if (const std::uint32_t version = DsurfFileVersion(bytes); version != 0) {
+      kind = version == kDsurfVersion ? "dsurf surface" : "dsurf character";
       Character ch;
       s = ParseCharacter(bytes, a.input, &ch);
-      if (s.ok()) s = ValidateAsset(ch.asset);
+      if (s.ok() && version != kDsurfVersion) s = ValidateAsset(ch.asset);
     } else if (IsGltfPath(a.input)) {
       kind = "gltf";
       Asset asset;

@@ -115,6 +115,10 @@ class ByteReader {
   bool ok() const { return status_.ok(); }
   const Status& status() const { return status_; }
   std::size_t pos() const { return pos_; }
+  /// Bytes not read yet.
+  std::size_t left() const { return b_.size() - pos_; }
+  /// The name errors start with.
+  const std::string& name() const { return name_; }
 
  private:
   std::string_view b_;

@@ -1,19 +1,17 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Character files: version-2 .dsurf (docs/file-format.md, "Character files"). Each part's
-// surface is a complete version-1 .dsurf inside, so the surface reader is shared.
+// Character files: the body of version-2 .dsurf files (docs/file-format.md, "Character
+// files"); the container is dsurf_container.cpp's. Each part's surface is a complete
+// version-1 .dsurf inside, so the surface reader is shared.
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "core/byte_stream.h"
 #include "dermis/asset/asset_io.h"
-#include "dermis/core/file_io.h"
 #include "dermis/runtime/character.h"
+#include "dsurf/dsurf_container.h"
 
 namespace dermis {
 namespace {
-
-constexpr char kMagic[8] = {'D', 'S', 'U', 'R', 'F', '\r', '\n', '\x1a'};
 
 void WriteSummary(const PartFitSummary& f, ByteWriter* w) {
   w->I64(f.points);
@@ -45,22 +43,9 @@ PartFitSummary ReadSummary(ByteReader* r) {
 
 }  // namespace
 
-std::uint32_t DsurfFileVersion(std::string_view bytes) {
-  if (bytes.size() < 12 || std::memcmp(bytes.data(), kMagic, 8) != 0) return 0;
-  std::uint32_t v = 0;
-  for (int i = 0; i < 4; ++i) {
-    v |= static_cast<std::uint32_t>(
-             static_cast<unsigned char>(bytes[8 + static_cast<std::size_t>(i)]))
-         << (8 * i);
-  }
-  return v;
-}
-
 std::string SerializeCharacter(const Character& ch) {
   ByteWriter w;
-  w.str().append(kMagic, 8);
-  w.U32(kCharacterDsurfVersion);
-  w.U32(0);  // flags
+  dsurf::WriteHeader(kCharacterDsurfVersion, &w);
   w.Str(SerializeAsset(ch.asset));
   w.U32(static_cast<std::uint32_t>(ch.parts.size()));
   for (const CharacterPart& p : ch.parts) {
@@ -97,28 +82,14 @@ std::string SerializeCharacter(const Character& ch) {
     w.I64(u.triangles);
     w.Str(u.reason);
   }
-  w.U64(Fnv1a64(w.str()));
-  return std::move(w.str());
+  return dsurf::Finish(&w);
 }
 
-Status ParseCharacter(std::string_view bytes, const std::string& name, Character* out) {
-  const std::uint32_t version = DsurfFileVersion(bytes);
-  if (version == 0) return Status::InvalidInput(name + ": not a .dsurf file (bad magic bytes)");
-  if (version != kCharacterDsurfVersion) {
-    return Status::InvalidInput(name + ": a version " + std::to_string(version) +
-                                " .dsurf is a plain surface, not a character");
-  }
-  if (bytes.size() < 24) return Status::InvalidInput(name + ": truncated .dsurf header");
-  {
-    ByteReader tail(bytes.substr(bytes.size() - 8), name);
-    if (tail.U64("checksum") != Fnv1a64(bytes.substr(0, bytes.size() - 8))) {
-      return Status::InvalidInput(name + ": checksum mismatch (the file is corrupt or truncated)");
-    }
-  }
-  ByteReader r(bytes.substr(0, bytes.size() - 8), name);
-  r.Raw(8);
-  r.U32("version");
-  r.U32("flags");
+namespace dsurf {
+
+Status ReadCharacterBody(ByteReader* reader, Character* out) {
+  ByteReader& r = *reader;
+  const std::string& name = r.name();
   Character ch;
   const std::string asset_bytes = r.Str("asset");
   if (!r.ok()) return r.status();
@@ -214,29 +185,11 @@ Status ParseCharacter(std::string_view bytes, const std::string& name, Character
       ch.unfitted.push_back(std::move(u));
     }
   }
-  if (!r.ok()) return r.status();
-  if (r.pos() != bytes.size() - 8) {
-    return Status::InvalidInput(name + ": unexpected bytes before the checksum");
-  }
+  s = CheckEnd(r);
+  if (!s.ok()) return s;
   *out = std::move(ch);
   return Status::Ok();
 }
 
-Status ReadCharacter(const std::string& path, Character* out) {
-  std::string bytes;
-  Status s = ReadFileBytes(path, "a .dsurf file", &bytes);
-  if (!s.ok()) return s;
-  if (DsurfFileVersion(bytes) == 1) {
-    Character ch;
-    ch.asset.source = path;
-    CharacterPart part;
-    s = ParseDsurf(bytes, path, &part.surface);
-    if (!s.ok()) return s;
-    ch.parts.push_back(std::move(part));
-    *out = std::move(ch);
-    return Status::Ok();
-  }
-  return ParseCharacter(bytes, path, out);
-}
-
+}  // namespace dsurf
 }  // namespace dermis

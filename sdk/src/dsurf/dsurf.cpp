@@ -1,30 +1,23 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// The .dsurf container (docs/file-format.md): explicit little-endian fields, bounds-checked
-// parsing, FNV-1a 64 checksum over everything before it.
+// Version-1 .dsurf files, a displaced surface (docs/file-format.md): explicit little-endian
+// fields, bounds-checked parsing; the container (magic, version, checksum) is
+// dsurf_container.cpp's.
 #include "dermis/dsurf/dsurf.h"
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "core/byte_stream.h"
-#include "dermis/core/file_io.h"
+#include "dsurf/dsurf_container.h"
 
 namespace dermis {
-namespace {
-
-constexpr char kMagic[8] = {'D', 'S', 'U', 'R', 'F', '\r', '\n', '\x1a'};
-
-}  // namespace
 
 std::string SerializeDsurf(const ManifoldDomain& domain, const Vec3* rest_positions,
                            const BsplineDisplacement* displacement) {
   const DomainData& d = domain.data();
   const MeshTopology& topo = domain.topology();
   ByteWriter w;
-  w.str().append(kMagic, 8);
-  w.U32(kDsurfVersion);
-  w.U32(0);  // flags, reserved
+  dsurf::WriteHeader(kDsurfVersion, &w);
   w.U8(static_cast<std::uint8_t>(d.options.chart_type));
   w.U8(static_cast<std::uint8_t>(d.options.blend_type));
   w.F64(d.options.blend_lb);
@@ -51,31 +44,26 @@ std::string SerializeDsurf(const ManifoldDomain& domain, const Vec3* rest_positi
     for (std::int64_t o : b.offsets) w.I64(o);
     for (float x : b.values) w.F32(x);
   }
-  w.U64(Fnv1a64(w.str()));
-  return std::move(w.str());
+  return dsurf::Finish(&w);
 }
 
 Status ParseDsurf(std::string_view bytes, const std::string& name, DisplacedSurface* out) {
-  if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 8) != 0) {
-    return Status::InvalidInput(name + ": not a .dsurf file (bad magic bytes)");
+  dsurf::Contents file;
+  Status s = dsurf::Open(bytes, name, &file);
+  if (!s.ok()) return s;
+  if (file.version != kDsurfVersion) {
+    return Status::InvalidInput(name + ": a version " + std::to_string(file.version) +
+                                " .dsurf is a character, not a plain surface");
   }
-  if (bytes.size() < 16) return Status::InvalidInput(name + ": truncated .dsurf header");
-  ByteReader r(bytes.substr(0, bytes.size() - 8), name);
-  {
-    ByteReader tail(bytes.substr(bytes.size() - 8), name);
-    const std::uint64_t stored = tail.U64("checksum");
-    if (stored != Fnv1a64(bytes.substr(0, bytes.size() - 8))) {
-      return Status::InvalidInput(name + ": checksum mismatch (the file is corrupt or truncated)");
-    }
-  }
-  r.Raw(8);
-  const std::uint32_t version = r.U32("version");
-  if (r.ok() && (version == 0 || version > kDsurfVersion)) {
-    return Status::Unsupported(name + ": .dsurf version " + std::to_string(version) +
-                               " is not supported (this build reads 1.." +
-                               std::to_string(kDsurfVersion) + ")");
-  }
-  r.U32("flags");
+  ByteReader r = dsurf::BodyReader(file, name);
+  return dsurf::ReadSurfaceBody(&r, out);
+}
+
+namespace dsurf {
+
+Status ReadSurfaceBody(ByteReader* reader, DisplacedSurface* out) {
+  ByteReader& r = *reader;
+  const std::string& name = r.name();
   DomainData data;
   const std::uint8_t chart = r.U8("chart type"), blend = r.U8("blend type");
   if (chart > 2) r.Fail("unknown chart type " + std::to_string(chart));
@@ -145,12 +133,9 @@ Status ParseDsurf(std::string_view bytes, const std::string& name, DisplacedSurf
       for (float& x : disp.values) x = r.F32("coefficient");
     }
   }
-  if (!r.ok()) return r.status();
-  if (r.pos() != bytes.size() - 8) {
-    return Status::InvalidInput(name + ": " + std::to_string(bytes.size() - 8 - r.pos()) +
-                                " unexpected bytes before the checksum");
-  }
-  Status s = MeshTopology::BuildQuads(static_cast<Index>(nv), quads, &data.topology);
+  Status s = CheckEnd(r);
+  if (!s.ok()) return s;
+  s = MeshTopology::BuildQuads(static_cast<Index>(nv), quads, &data.topology);
   if (!s.ok()) return s.WithContext(name);
   DisplacedSurface result;
   result.domain = ManifoldDomain::Create(std::move(data), &s);
@@ -164,11 +149,5 @@ Status ParseDsurf(std::string_view bytes, const std::string& name, DisplacedSurf
   return Status::Ok();
 }
 
-Status ReadDsurf(const std::string& path, DisplacedSurface* out) {
-  std::string bytes;
-  Status s = ReadFileBytes(path, "a .dsurf file", &bytes);
-  if (!s.ok()) return s;
-  return ParseDsurf(bytes, path, out);
-}
-
+}  // namespace dsurf
 }  // namespace dermis

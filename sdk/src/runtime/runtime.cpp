@@ -33,18 +33,8 @@ Status RuntimeCharacter::Load(const std::string& path, std::unique_ptr<RuntimeCh
 Status RuntimeCharacter::FromBytes(std::string_view bytes, const std::string& name,
                                    std::unique_ptr<RuntimeCharacter>* out) {
   Character c;
-  const std::uint32_t version = DsurfFileVersion(bytes);
-  if (version == 0) return Status::InvalidInput(name + ": not a .dsurf file");
-  if (version == 1) {
-    CharacterPart part;
-    const Status s = ParseDsurf(bytes, name, &part.surface);
-    if (!s.ok()) return s;
-    c.asset.source = name;
-    c.parts.push_back(std::move(part));
-  } else {
-    const Status s = ParseCharacter(bytes, name, &c);
-    if (!s.ok()) return s;
-  }
+  const Status s = ParseCharacter(bytes, name, &c);
+  if (!s.ok()) return s;
   return FromCharacter(std::move(c), out);
 }
 

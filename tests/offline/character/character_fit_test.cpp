@@ -149,13 +149,11 @@ TEST_CASE("character: .dsurf container round trip and damaged files") {
   CHECK(SerializeCharacter(back) == bytes);
   CHECK(back.unfitted.size() == 1);
   CHECK(back.unfitted[0].reason == ch.unfitted[0].reason);
-  // A plain surface is not a character.
-  const CharacterPart& part = ch.parts[0];
-  const std::string plain = SerializeDsurf(*part.surface.domain, part.surface.rest_positions.data(),
-                                           part.surface.displacement.get());
-  Status s = ParseCharacter(plain, "plain.dsurf", &back);
+  // A plain surface is not a character: the surface reader refuses the character file.
+  DisplacedSurface surface;
+  Status s = ParseDsurf(bytes, "c.dsurf", &surface);
   CHECK_FALSE(s.ok());
-  CHECK(s.message().find("plain.dsurf") != std::string::npos);
+  CHECK(s.message() == "c.dsurf: a version 2 .dsurf is a character, not a plain surface");
   // Every truncation and a flipped byte fail cleanly.
   for (std::size_t n = 0; n < bytes.size(); n += 97) {
     CHECK_FALSE(ParseCharacter(bytes.substr(0, n), "t.dsurf", &back).ok());

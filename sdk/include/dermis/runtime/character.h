@@ -3,7 +3,8 @@
 /// \brief A Dermis character: the source asset (skeleton, skins, clips, materials, meshes)
 /// plus one displaced surface per fitted mesh component, skin weights on its control
 /// vertices, and every original vertex bound to the surface by its fitted parameter.
-/// Stored as a version-2 .dsurf file (docs/file-format.md).
+/// Stored as a version-2 .dsurf file (docs/file-format.md); read and written by
+/// dermis/dsurf/dsurf.h.
 #pragma once
 
 #include <cstdint>
@@ -17,9 +18,6 @@
 #include "dermis/dsurf/dsurf.h"
 
 namespace dermis {
-
-/// Format version of character files (plain surfaces are version 1).
-constexpr std::uint32_t kCharacterDsurfVersion = 2;
 
 /// Summary of one part's fit (paper units: the part's bounding box largest side is 1).
 struct PartFitSummary {
@@ -70,20 +68,6 @@ struct Character {
   std::vector<std::vector<std::vector<VertexBinding>>> bindings;
   std::vector<UnfittedPart> unfitted;
 };
-
-/// Serialises a character as a version-2 .dsurf (deterministic bytes, FNV-1a checksum).
-std::string SerializeCharacter(const Character& character);
-
-/// Parses a version-2 .dsurf. Errors name `name` and the part of the file at fault.
-Status ParseCharacter(std::string_view bytes, const std::string& name, Character* out);
-
-/// The version field of .dsurf bytes (0 if they are not a .dsurf at all).
-std::uint32_t DsurfFileVersion(std::string_view bytes);
-
-/// Reads a .dsurf of either version: a version-1 surface becomes a character whose asset is
-/// the control mesh tessellation-free single part (no mesh, no bindings); see ReadDsurf() for
-/// plain surfaces.
-Status ReadCharacter(const std::string& path, Character* out);
 
 /// The rig of skin `skin` of `asset` as the deformers see it: joint j's parent is the index,
 /// within the skin's joint list, of the nearest ancestor node of joint j that is itself one of

@@ -1,0 +1,51 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The one reader of .dsurf files of every version (docs/file-format.md): the container is
+// checked once, then the version picks the body. A version-1 surface reads as a character of
+// one part with no asset meshes.
+#include "core/byte_stream.h"
+#include "dermis/core/file_io.h"
+#include "dermis/dsurf/dsurf.h"
+#include "dermis/runtime/character.h"
+#include "dsurf/dsurf_container.h"
+
+namespace dermis {
+
+Status ParseCharacter(std::string_view bytes, const std::string& name, Character* out,
+                      std::uint32_t* version) {
+  dsurf::Contents file;
+  Status s = dsurf::Open(bytes, name, &file);
+  if (!s.ok()) return s;
+  ByteReader r = dsurf::BodyReader(file, name);
+  Character ch;
+  if (file.version == kDsurfVersion) {
+    CharacterPart part;
+    s = dsurf::ReadSurfaceBody(&r, &part.surface);
+    if (!s.ok()) return s;
+    ch.asset.source = name;
+    ch.parts.push_back(std::move(part));
+  } else {
+    s = dsurf::ReadCharacterBody(&r, &ch);
+    if (!s.ok()) return s;
+  }
+  *out = std::move(ch);
+  if (version != nullptr) *version = file.version;
+  return Status::Ok();
+}
+
+Status ReadCharacter(const std::string& path, Character* out, std::uint32_t* version,
+                     std::string* bytes) {
+  std::string local;
+  std::string& data = bytes != nullptr ? *bytes : local;
+  const Status s = ReadFileBytes(path, "a .dsurf file", &data);
+  if (!s.ok()) return s;
+  return ParseCharacter(data, path, out, version);
+}
+
+Status ReadDsurf(const std::string& path, DisplacedSurface* out) {
+  std::string bytes;
+  const Status s = ReadFileBytes(path, "a .dsurf file", &bytes);
+  if (!s.ok()) return s;
+  return ParseDsurf(bytes, path, out);
+}
+
+}  // namespace dermis
