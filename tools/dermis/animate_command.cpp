@@ -19,7 +19,6 @@
 #include "dermis/offline/character/skin_transfer.h"
 #include "dermis/offline/io/obj_io.h"
 #include "dermis/plugins/gltf.h"
-#include "dermis/plugins/import.h"
 
 namespace dermis::cli {
 namespace {

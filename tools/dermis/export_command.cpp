@@ -16,7 +16,6 @@
 #include "dermis/offline/character/character_export.h"
 #include "dermis/offline/character/character_pose.h"
 #include "dermis/plugins/gltf.h"
-#include "dermis/plugins/import.h"
 #include "dermis/runtime/character.h"
 
 namespace dermis::cli {

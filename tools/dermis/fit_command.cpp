@@ -18,7 +18,7 @@
 #include "dermis/offline/fit/surface_fit.h"
 #include "dermis/offline/io/obj_io.h"
 #include "dermis/offline/io/point_input.h"
-#include "dermis/plugins/import.h"
+#include "importers.h"
 
 namespace dermis::cli {
 namespace {
@@ -100,11 +100,6 @@ nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   return j;
 }
 
-bool IsScanPath(const std::string& path) {
-  const std::string ext = LowerExtension(path);
-  return ext == ".obj" || ext == ".ply";
-}
-
 Json CharacterReportJson(const FitArgs& a, const Character& ch, const CharacterFitReport& r) {
   Json j;
   j["schema"] = "dermis.fit-character/1";
@@ -128,10 +123,11 @@ Json CharacterReportJson(const FitArgs& a, const Character& ch, const CharacterF
 }
 
 int RunFitCharacter(const FitArgs& a) {
-  Asset asset;
-  std::string embedded;
-  Status s = ImportAsset(a.input, &asset, &embedded);
+  ImportedAsset imported;
+  Status s = Importers().ImportAsset(a.input, &imported);
   if (!s.ok()) return Fail(s);
+  const Asset& asset = imported.asset;
+  const std::string& embedded = imported.embedded_dsurf;
   MakeParent(a.output);
   if (!embedded.empty() && !a.refit) {
     // A Dermis export with the .dsurf embedded: take it back as it was (lossless).
@@ -191,10 +187,11 @@ int RunFitCharacter(const FitArgs& a) {
 }
 
 int RunFit(const FitArgs& a) {
-  if (!IsScanPath(a.input)) return RunFitCharacter(a);
+  // A file a scan importer takes is one surface; anything else is a character.
+  if (Importers().Find(a.input, ImportKind::kScan) == nullptr) return RunFitCharacter(a);
   PolygonMesh mesh;
   Index dropped = 0;
-  Status s = ReadFitInput(a.input, &mesh, &dropped);
+  Status s = ReadFitInput(a.input, &mesh, &dropped, &Importers());
   if (!s.ok()) return Fail(s);
   PolygonMesh control;
   if (!a.control_mesh.empty()) {

@@ -24,8 +24,8 @@
 #include "dermis/core/path.h"
 #include "dermis/dsurf/dsurf.h"
 #include "dermis/plugins/gltf.h"
-#include "dermis/plugins/import.h"
 #include "dermis/runtime/character.h"
+#include "importers.h"
 
 namespace dermis::cli {
 namespace {
@@ -228,16 +228,17 @@ Status InspectDsurf(const std::string& path, Json* report) {
   return InspectDsurfBytes(bytes, path, true, report);
 }
 
-/// Any file ImportAsset() reads: fills report["asset"] (and report["surface"] for a .glb that
-/// carries a DERMIS_displaced_surface extension).
+/// Any file an asset importer reads: fills report["asset"] (and report["surface"] or
+/// report["character"] for a file that carries a Dermis surface, as a .glb can in its
+/// DERMIS_displaced_surface extension).
 Status InspectAssetFile(const std::string& path, Json* report) {
-  Asset asset;
-  std::string dsurf_bytes;
-  Status s = ImportAsset(path, &asset, &dsurf_bytes);
+  ImportedAsset imported;
+  Status s = Importers().ImportAsset(path, &imported);
   if (!s.ok()) return s;
-  (*report)["asset"] = DescribeAsset(asset);
-  if (!dsurf_bytes.empty()) {
-    s = InspectDsurfBytes(dsurf_bytes, path + " (" + kDsurfGltfExtension + ")", false, report);
+  (*report)["asset"] = DescribeAsset(imported.asset);
+  if (!imported.embedded_dsurf.empty()) {
+    s = InspectDsurfBytes(imported.embedded_dsurf, path + " (" + kDsurfGltfExtension + ")", false,
+                          report);
     if (!s.ok()) return s;
   }
   return Status::Ok();

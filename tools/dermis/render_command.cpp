@@ -21,6 +21,7 @@
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/offline/io/point_input.h"
 #include "dermis/surface/tessellation.h"
+#include "importers.h"
 #include "render/raster.h"
 
 namespace dermis::cli {
@@ -214,7 +215,7 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
   if (error_map) {
     PolygonMesh ref;
     Index dropped = 0;
-    const Status s = ReadFitInput(a.reference, &ref, &dropped);
+    const Status s = ReadFitInput(a.reference, &ref, &dropped, &Importers());
     if (!s.ok()) return Fail(s);
     std::vector<std::uint32_t> tris;
     for (Index f = 0; f < ref.num_faces(); ++f) {

@@ -15,8 +15,8 @@
 #include "dermis/core/file_io.h"
 #include "dermis/dsurf/dsurf.h"
 #include "dermis/plugins/gltf.h"
-#include "dermis/plugins/import.h"
 #include "dermis/runtime/character.h"
+#include "importers.h"
 
 namespace dermis::cli {
 namespace {
@@ -121,18 +121,16 @@ int RunValidate(const ValidateArgs& a) {
       Character ch;
       s = ParseCharacter(bytes, a.input, &ch);
       if (s.ok() && version != kDsurfVersion) s = ValidateAsset(ch.asset);
-    } else if (IsGltfPath(a.input)) {
-      kind = "gltf";
-      Asset asset;
-      s = ImportGltf(a.input, &asset);
-      if (s.ok()) s = ValidateAsset(asset);
-      khronos = RunKhronos(a.input);
-      if (khronos.ran && khronos.errors > 0) valid = false;
     } else {
-      kind = "other";
-      Asset asset;
-      s = ImportAsset(a.input, &asset);
-      if (s.ok()) s = ValidateAsset(asset);
+      const Importer* importer = Importers().Find(a.input, ImportKind::kAsset);
+      kind = importer != nullptr && importer->name() == "gltf" ? "gltf" : "other";
+      ImportedAsset imported;
+      s = Importers().ImportAsset(a.input, &imported);
+      if (s.ok()) s = ValidateAsset(imported.asset);
+      if (kind == "gltf") {  // the Khronos validator reads glTF only
+        khronos = RunKhronos(a.input);
+        if (khronos.ran && khronos.errors > 0) valid = false;
+      }
     }
     valid = valid && s.ok();
   }

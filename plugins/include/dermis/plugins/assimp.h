@@ -9,6 +9,7 @@
 #include <string>
 
 #include "dermis/asset/asset.h"
+#include "dermis/asset/importer.h"
 #include "dermis/core/status.h"
 
 namespace dermis {
@@ -17,5 +18,11 @@ namespace dermis {
 /// bone offset matrices become inverse bind matrices, influences are kept as they are (sets
 /// of 4) and renormalised. Errors name the file and carry Assimp's message.
 Status ImportAssimp(const std::string& path, Asset* out);
+
+namespace plugins::assimp {
+/// Adds the Assimp importer to `registry`: assets from every file that is not glTF (.gltf and
+/// .glb are refused), recognised by Assimp by extension or content. Register it last.
+void Register(ImporterRegistry* registry);
+}  // namespace plugins::assimp
 
 }  // namespace dermis

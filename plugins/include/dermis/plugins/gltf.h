@@ -6,6 +6,7 @@
 #include <string>
 
 #include "dermis/asset/asset.h"
+#include "dermis/asset/importer.h"
 #include "dermis/core/status.h"
 
 namespace dermis {
@@ -24,6 +25,15 @@ constexpr const char* kDsurfGltfExtension = "DERMIS_displaced_surface";
 /// pointer, e.g. "x.glb: /accessors/3: byteOffset + size exceeds bufferView 2".
 /// Nothing in `out` is valid after an error.
 Status ImportGltf(const std::string& path, Asset* out, std::string* dsurf_bytes = nullptr);
+
+/// True for the extensions of glTF files (.gltf, .glb, any case).
+bool IsGltfPath(const std::string& path);
+
+namespace plugins::gltf {
+/// Adds the glTF importer to `registry`: assets from .gltf and .glb through ImportGltf(), the
+/// DERMIS_displaced_surface extension as ImportedAsset::embedded_dsurf.
+void Register(ImporterRegistry* registry);
+}  // namespace plugins::gltf
 
 /// Options of ExportGltf().
 struct GltfExportOptions {
