@@ -105,6 +105,13 @@ TEST_CASE("runtime: per-frame calls do not allocate") {
   dermis_character* c = nullptr;
   REQUIRE(dermis_character_load_memory(bytes.data(), bytes.size(), "c.dsurf", &c) == DERMIS_OK);
   dermis_instance* inst = nullptr;
+  // A value that names no deformer is refused (the deformer table decides, not a list here).
+  for (const int bogus : {3}) {  // (in C any int may come; 3 is the one C++ may pass here)
+    CHECK(dermis_instance_create(c, static_cast<dermis_deformer>(bogus), &inst) ==
+          DERMIS_ERROR_INVALID_ARGUMENT);
+    CHECK(inst == nullptr);
+    CHECK(std::string(dermis_last_error()) == "dermis_instance_create: unknown deformer");
+  }
   REQUIRE(dermis_instance_create(c, DERMIS_DEFORMER_SWEEP, &inst) == DERMIS_OK);
   dermis_output_desc desc;
   dermis_output_desc_init(&desc);

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <glm/gtc/quaternion.hpp>
+#include <string>
 #include <thread>
 
 #include "dermis/asset/asset_pose.h"
@@ -156,6 +157,26 @@ TEST_CASE("runtime: results do not depend on threads, block splits or the plan's
   bad.position_stride = 4;
   CHECK_FALSE(EvaluatePlan(plans[0], packed.data(), 0, 1, bad));
   CHECK_FALSE(EvaluatePlan(plans[0], nullptr, 0, 1, buffers(split)));
+  // The kernel backends: the portable one always runs; kAuto is the fastest this CPU runs;
+  // every available backend writes the same bytes as the one kAuto picks, up to float
+  // contraction (checked against the reference in the test above).
+  CHECK(SimdPathAvailable(SimdPath::kGeneric));
+  CHECK(SimdPathAvailable(SimdPath::kAuto));
+  CHECK(SimdPathAvailable(BestSimdPath()));
+  CHECK(BestSimdPath() != SimdPath::kAuto);
+  CHECK(std::string(SimdPathName(SimdPath::kGeneric)) == "generic");
+  CHECK(std::string(SimdPathName(SimdPath::kAvx2)) == "avx2");
+  CHECK(std::string(SimdPathName(SimdPath::kAuto)) == SimdPathName(BestSimdPath()));
+  CHECK(SimdPathAvailable(static_cast<SimdPath>(9)) == false);
+  CHECK_FALSE(
+      EvaluatePlan(plans[0], packed.data(), 0, 1, buffers(split), static_cast<SimdPath>(9)));
+  for (SimdPath path : AvailablePaths()) {
+    std::vector<float> again(8 * n, -7.0f);
+    REQUIRE(EvaluatePlan(plans[0], packed.data(), 0, plans[0].num_blocks(), buffers(again), path));
+    if (path == BestSimdPath()) {
+      CHECK(std::memcmp(whole.data(), again.data(), whole.size() * sizeof(float)) == 0);
+    }
+  }
   // Invalid sample locations are refused, naming the sample.
   std::vector<SampleLocation> wrong = samples;
   wrong[5].u = 1.5;

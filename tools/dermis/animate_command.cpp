@@ -95,11 +95,8 @@ int RunAnimate(const AnimateArgs& a) {
         a.input + ": --time applies to a clip, not to the rest pose (" + ClipList(ch.asset) + ")"));
   }
   CharacterPoseOptions options;
-  options.deformer = DeformerFromName(a.deformer);
-  options.mode = PoseModeFromName(a.mode);
-  options.level = a.level;
-  options.displacement_levels = a.displacement_levels;
-  options.threads = a.threads;
+  s = MakePoseOptions(a.deformer, a.mode, a.level, a.displacement_levels, a.threads, &options);
+  if (!s.ok()) return Fail(s);
   CharacterPoser poser;
   s = CharacterPoser::Build(ch, options, &poser);
   if (!s.ok()) return Fail(s);
@@ -177,10 +174,7 @@ void AddAnimateCommand(CLI::App* app, std::function<int()>* run) {
           },
           "SECONDS", "seconds"))
       ->capture_default_str();
-  cmd->add_option("--deformer", args->deformer,
-                  "Deformer of the control vertices: sweep (twists unwrapped along the clip), "
-                  "lbs or dqs")
-      ->check(CLI::IsMember(kDeformerNames))
+  AddDeformerOption(cmd, "--deformer", "Deformer of the control vertices", &args->deformer)
       ->capture_default_str();
   AddEvaluationOptions(cmd, "the original vertices on the posed surface", &args->mode, &args->level,
                        &args->displacement_levels);

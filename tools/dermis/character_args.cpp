@@ -7,14 +7,28 @@
 
 namespace dermis::cli {
 
-DeformerKind DeformerFromName(const std::string& name) {
-  if (name == "lbs") return DeformerKind::kLbs;
-  if (name == "dqs") return DeformerKind::kDqs;
-  return DeformerKind::kSweep;
+CLI::Option* AddDeformerOption(CLI::App* cmd, const std::string& flag, const std::string& help,
+                               std::string* name) {
+  std::size_t count = 0;
+  const DeformerInfo* table = DeformerTable(&count);
+  std::string list;
+  for (std::size_t i = 0; i < count; ++i) {
+    list += std::string(i ? ", " : "") + table[i].name + " (" + table[i].description + ")";
+  }
+  return cmd->add_option(flag, *name, help + ": " + list)->check(CLI::IsMember(DeformerNames()));
 }
 
-CharacterPoseMode PoseModeFromName(const std::string& name) {
-  return name == "lod" ? CharacterPoseMode::kLod : CharacterPoseMode::kBound;
+Status MakePoseOptions(const std::string& deformer, const std::string& mode, int level,
+                       int displacement_levels, int threads, CharacterPoseOptions* out) {
+  CharacterPoseOptions options;
+  const Status s = DeformerFromName(deformer, &options.deformer);
+  if (!s.ok()) return s;
+  options.mode = mode == "lod" ? CharacterPoseMode::kLod : CharacterPoseMode::kBound;
+  options.level = level;
+  options.displacement_levels = displacement_levels;
+  options.threads = threads;
+  *out = options;
+  return Status::Ok();
 }
 
 void AddEvaluationOptions(CLI::App* cmd, const std::string& bound_help, std::string* mode,

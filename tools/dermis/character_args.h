@@ -14,12 +14,16 @@
 
 namespace dermis::cli {
 
-/// The deformer named "sweep", "lbs" or "dqs" (the names the CLI accepts).
-DeformerKind DeformerFromName(const std::string& name);
-inline const std::vector<std::string> kDeformerNames = {"sweep", "lbs", "dqs"};
+/// Adds the option `flag` (e.g. "--deformer") naming a deformer of the deformer table
+/// (dermis/deform/deformer.h); its help is `help` followed by every deformer and what it is.
+CLI::Option* AddDeformerOption(CLI::App* cmd, const std::string& flag, const std::string& help,
+                               std::string* name);
 
-/// "bound" or "lod".
-CharacterPoseMode PoseModeFromName(const std::string& name);
+/// The poser options of `export`, `animate` and `render`: the deformer by name (an unknown
+/// name is an error naming the deformers), mode "bound" or "lod", level, displacement levels,
+/// threads.
+Status MakePoseOptions(const std::string& deformer, const std::string& mode, int level,
+                       int displacement_levels, int threads, CharacterPoseOptions* out);
 
 /// Registers the options that choose what is evaluated on a surface, shared by `export` and
 /// `animate`: --mode bound|lod (described by `bound_help`), --level n, --displacement-levels L.

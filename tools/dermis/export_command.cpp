@@ -42,13 +42,11 @@ constexpr std::uint64_t kLargeBake = std::uint64_t{1} << 24;
 /// The posed and baked asset of --bake-sweep.
 Status Bake(const ExportArgs& a, const Character& ch, Asset* out, CharacterBakeReport* report) {
   CharacterPoseOptions options;
-  options.deformer = DeformerFromName(a.deformer);
-  options.mode = PoseModeFromName(a.mode);
-  options.level = a.level;
-  options.displacement_levels = a.displacement_levels;
-  options.threads = a.threads;
+  Status s =
+      MakePoseOptions(a.deformer, a.mode, a.level, a.displacement_levels, a.threads, &options);
+  if (!s.ok()) return s;
   CharacterPoser poser;
-  Status s = CharacterPoser::Build(ch, options, &poser);
+  s = CharacterPoser::Build(ch, options, &poser);
   if (!s.ok()) return s;
   if (!a.quiet) {
     std::uint64_t frames = 0, vertices = 0;
@@ -166,9 +164,8 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--fps", args->fps, "--bake-sweep: frames per second of the bake")
       ->check(CLI::Range(0.001, 1000.0))
       ->capture_default_str();
-  cmd->add_option("--deformer", args->deformer,
-                  "--bake-sweep: deformer of the control vertices (sweep, lbs or dqs)")
-      ->check(CLI::IsMember(kDeformerNames))
+  AddDeformerOption(cmd, "--deformer", "--bake-sweep: deformer of the control vertices",
+                    &args->deformer)
       ->capture_default_str();
   cmd->add_option("--threads", args->threads,
                   "--bake-sweep: threads (0: all cores); results do not vary")

@@ -292,11 +292,8 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
   std::vector<CharacterPoser> posers(deformers.size());
   for (std::size_t k = 0; k < deformers.size(); ++k) {
     CharacterPoseOptions po;
-    po.deformer = DeformerFromName(deformers[k]);
-    po.mode = PoseModeFromName(a.mode);
-    po.level = a.level;
-    po.displacement_levels = a.displacement_levels;
-    po.threads = 0;
+    s = MakePoseOptions(deformers[k], a.mode, a.level, a.displacement_levels, 0, &po);
+    if (!s.ok()) return Fail(s);
     s = CharacterPoser::Build(ch, po, &posers[k]);
     if (!s.ok()) return Fail(s);
   }
@@ -463,12 +460,11 @@ void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
       ->check(CLI::Range(1, 64));
   cmd->add_option("--columns", args->columns, "Columns of the contact sheet (default: square)")
       ->check(CLI::Range(1, 64));
-  cmd->add_option("--deformer", args->deformer, "Deformer of the control vertices")
-      ->check(CLI::IsMember(kDeformerNames))
+  AddDeformerOption(cmd, "--deformer", "Deformer of the control vertices", &args->deformer)
       ->capture_default_str();
-  cmd->add_option("--compare", args->compare,
-                  "Characters: draw the same frames with this deformer too, as a second row")
-      ->check(CLI::IsMember(kDeformerNames));
+  AddDeformerOption(cmd, "--compare",
+                    "Characters: draw the same frames with this deformer too, as a second row",
+                    &args->compare);
   cmd->add_option("--mode", args->mode,
                   "Characters: lod (the surface tessellated at --level) or bound (the original "
                   "vertices on the surface)")

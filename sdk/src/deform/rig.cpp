@@ -1,5 +1,5 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Rig validation and the deformer factory (docs/deformation.md section "Rigs").
+// Rig validation (docs/deformation.md section "Rigs").
 #include <cmath>
 #include <string>
 
@@ -7,18 +7,6 @@
 #include "dermis/deform/deformer.h"
 
 namespace dermis {
-
-const char* DeformerName(DeformerKind kind) {
-  switch (kind) {
-    case DeformerKind::kLbs:
-      return "lbs";
-    case DeformerKind::kDqs:
-      return "dqs";
-    case DeformerKind::kSweep:
-      return "sweep";
-  }
-  return "unknown";
-}
 
 Status ValidateRig(const SkinRig& rig, const VertexWeights* influences, std::size_t count,
                    const std::string& name) {
@@ -81,21 +69,6 @@ Status ValidateRig(const SkinRig& rig, const VertexWeights* influences, std::siz
     }
   }
   return Status::Ok();
-}
-
-Status MakeDeformer(DeformerKind kind, const SkinRig& rig, const Vec3* rest_positions,
-                    const Vec3* rest_normals, const VertexWeights* influences, std::size_t count,
-                    std::unique_ptr<Deformer>* out) {
-  switch (kind) {
-    case DeformerKind::kLbs:
-      return MakeLbsDeformer(rig, rest_positions, rest_normals, influences, count, out);
-    case DeformerKind::kDqs:
-      return MakeDqsDeformer(rig, rest_positions, rest_normals, influences, count, out);
-    case DeformerKind::kSweep:
-      return MakeSweepDeformer(rig, rest_positions, rest_normals, influences, count, SweepOptions{},
-                               out);
-  }
-  return Status::InvalidInput("unknown deformer");
 }
 
 }  // namespace dermis

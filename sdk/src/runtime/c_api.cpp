@@ -205,8 +205,8 @@ dermis_status dermis_instance_create(const dermis_character* c, dermis_deformer 
   if (!c || !out)
     return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_instance_create: null argument");
   *out = nullptr;
-  if (deformer != DERMIS_DEFORMER_LBS && deformer != DERMIS_DEFORMER_DQS &&
-      deformer != DERMIS_DEFORMER_SWEEP) {
+  if (static_cast<int>(deformer) < 0 || static_cast<int>(deformer) > 255 ||
+      !dermis::FindDeformer(static_cast<dermis::DeformerKind>(deformer))) {
     return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_instance_create: unknown deformer");
   }
   std::unique_ptr<dermis::RuntimeInstance> inst;

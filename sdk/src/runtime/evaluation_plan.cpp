@@ -13,17 +13,9 @@
 #include "dermis/runtime/plan_layout.h"
 #include "dermis/surface/blend.h"
 #include "dermis/surface/chart.h"
+#include "runtime/kernels/kernels.h"
 
 namespace dermis {
-
-void EvaluatePlanBlocks_generic(const PlanView& plan, const float* patches, std::size_t begin,
-                                std::size_t end, const PlanOutput& out);
-#if defined(__x86_64__)
-void EvaluatePlanBlocks_avx2(const PlanView& plan, const float* patches, std::size_t begin,
-                             std::size_t end, const PlanOutput& out);
-#endif
-
-static_assert(kPackedPatchStride == kPackedPatchFloats, "packed patch layouts disagree");
 
 namespace {
 
@@ -205,7 +197,7 @@ Status EvaluationPlan::Build(const ManifoldDomain& domain, const Displacement* d
 
 void PackPatches(const LocalPatch* patches, std::size_t count, float* out) {
   for (std::size_t v = 0; v < count; ++v) {
-    float* o = out + v * kPackedPatchFloats;
+    float* o = out + v * kPackedPatchStride;
     for (int k = 0; k < 3; ++k) {
       for (int m = 0; m < 3; ++m) {
         for (int n = 0; n < 3; ++n) o[k * 9 + m * 3 + n] = F32(patches[v].coeff[m][n][k]);
@@ -216,28 +208,21 @@ void PackPatches(const LocalPatch* patches, std::size_t count, float* out) {
   }
 }
 
-bool SimdPathAvailable(SimdPath path) {
-  switch (path) {
-    case SimdPath::kAuto:
-    case SimdPath::kGeneric:
-      return true;
-    case SimdPath::kAvx2:
-#if defined(__x86_64__)
-      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#else
-      return false;
-#endif
-  }
-  return false;
-}
+bool SimdPathAvailable(SimdPath path) { return kernels::FindBackend(path) != nullptr; }
 
-SimdPath BestSimdPath() {
-  return SimdPathAvailable(SimdPath::kAvx2) ? SimdPath::kAvx2 : SimdPath::kGeneric;
-}
+SimdPath BestSimdPath() { return kernels::FindBackend(SimdPath::kAuto)->path; }
 
 const char* SimdPathName(SimdPath path) {
   if (path == SimdPath::kAuto) path = BestSimdPath();
-  return path == SimdPath::kAvx2 ? "avx2" : "generic";
+  switch (path) {
+    case SimdPath::kGeneric:
+      return "generic";
+    case SimdPath::kAvx2:
+      return "avx2";
+    case SimdPath::kAuto:
+      break;
+  }
+  return "unknown";
 }
 
 bool EvaluatePlan(const EvaluationPlan& plan, const float* packed_patches, std::size_t block_begin,
@@ -246,17 +231,10 @@ bool EvaluatePlan(const EvaluationPlan& plan, const float* packed_patches, std::
   if (block_begin == block_end) return true;
   if (!packed_patches || !out.positions || out.position_stride < 3 * sizeof(float)) return false;
   if (out.normals && out.normal_stride < 3 * sizeof(float)) return false;
-  if (path == SimdPath::kAuto) path = BestSimdPath();
-  if (!SimdPathAvailable(path)) return false;
-  const PlanView view{plan.blocks(), plan.block_data()};
-  const PlanOutput o{out.positions, out.position_stride, out.normals, out.normal_stride};
-#if defined(__x86_64__)
-  if (path == SimdPath::kAvx2) {
-    EvaluatePlanBlocks_avx2(view, packed_patches, block_begin, block_end, o);
-    return true;
-  }
-#endif
-  EvaluatePlanBlocks_generic(view, packed_patches, block_begin, block_end, o);
+  const kernels::Backend* backend = kernels::FindBackend(path);
+  if (backend == nullptr) return false;
+  backend->evaluate(PlanView{plan.blocks(), plan.block_data()}, packed_patches, block_begin,
+                    block_end, out);
   return true;
 }
 

@@ -467,4 +467,13 @@ TEST_CASE("character pose: the static asset of a pose") {
   CHECK_FALSE(BuildPosedAsset(poser, {}, &posed).ok());
 }
 
+TEST_CASE("character pose: a deformer the table does not know is refused") {
+  CharacterPoseOptions options;
+  options.deformer = static_cast<DeformerKind>(9);
+  CharacterPoser poser;
+  const Status s = CharacterPoser::Build(test::FittedCylinders(), options, &poser);
+  CHECK(s.code() == StatusCode::kInvalidInput);
+  CHECK_THAT(s.message(), Catch::EndsWith(": unknown deformer 9"));
+}
+
 }  // namespace dermis

@@ -17,6 +17,7 @@
 #include <glm/vec4.hpp>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "dermis/core/status.h"
@@ -49,10 +50,41 @@ struct VertexWeights {
 Status ValidateRig(const SkinRig& rig, const VertexWeights* influences, std::size_t count,
                    const std::string& name);
 
-/// Which deformer.
+/// Which deformer. The values are those of the C API's dermis_deformer.
 enum class DeformerKind : std::uint8_t { kLbs = 0, kDqs = 1, kSweep = 2 };
 
-/// "lbs", "dqs", "sweep".
+class Deformer;
+
+/// One row of the deformer table: everything the SDK, the C API and the tools know of a
+/// deformer. The table (deform/deformer_registry.cpp) is the only list of deformers: a new one
+/// is a DeformerKind value, its Make function and one row (docs/overview.md).
+struct DeformerInfo {
+  DeformerKind kind;
+  const char* name;         ///< As tools and messages name it: "lbs", "dqs", "sweep".
+  const char* description;  ///< One line for help texts.
+  /// Creates the deformer with its default settings (MakeDeformer()).
+  Status (*make)(const SkinRig& rig, const Vec3* rest_positions, const Vec3* rest_normals,
+                 const VertexWeights* influences, std::size_t count,
+                 std::unique_ptr<Deformer>* out);
+};
+
+/// The deformer table, in DeformerKind order; `*count` receives its length.
+const DeformerInfo* DeformerTable(std::size_t* count);
+
+/// The row of `kind`, or null for a value that names no deformer.
+const DeformerInfo* FindDeformer(DeformerKind kind);
+
+/// The row named `name` (exactly, lower case), or null.
+const DeformerInfo* FindDeformer(std::string_view name);
+
+/// The kind named `name`; kInvalidInput "unknown deformer 'NAME' (deformers: lbs, dqs,
+/// sweep)" if there is none.
+Status DeformerFromName(std::string_view name, DeformerKind* out);
+
+/// The names of every deformer, in table order.
+std::vector<std::string> DeformerNames();
+
+/// "lbs", "dqs", "sweep"; "unknown" for a value that names no deformer.
 const char* DeformerName(DeformerKind kind);
 
 /// A deformer of a fixed set of rest vertices by one rig.
@@ -136,7 +168,8 @@ Status MakeSweepDeformer(const SkinRig& rig, const Vec3* rest_positions, const V
                          const VertexWeights* influences, std::size_t count,
                          const SweepOptions& options, std::unique_ptr<Deformer>* out);
 
-/// Creates the deformer of `kind` with default sweep options.
+/// Creates the deformer of `kind` with its default settings (the table's make function);
+/// kInvalidInput for a value that names no deformer.
 Status MakeDeformer(DeformerKind kind, const SkinRig& rig, const Vec3* rest_positions,
                     const Vec3* rest_normals, const VertexWeights* influences, std::size_t count,
                     std::unique_ptr<Deformer>* out);

@@ -38,9 +38,6 @@ bool SimdPathAvailable(SimdPath path);
 /// "generic", "avx2" (kAuto: the resolved one).
 const char* SimdPathName(SimdPath path);
 
-/// Floats per packed patch in the buffer PackPatches() writes.
-constexpr std::size_t kPackedPatchStride = 32;
-
 /// Packs `count` local patches into the kernel's float layout (27 coefficients and the
 /// fallback normal per patch, kPackedPatchStride floats each) into caller-owned `out`
 /// (count * kPackedPatchStride floats). Does not allocate.
@@ -85,15 +82,6 @@ class EvaluationPlan {
   std::size_t num_vertices_ = 0;
   std::vector<PlanBlock> blocks_;
   std::vector<float> data_;
-};
-
-/// Caller-owned output of EvaluatePlan(): sample i's position (3 floats) at
-/// positions + i * position_stride bytes, its unit normal likewise (normals may be null).
-struct PlanOutputBuffers {
-  float* positions = nullptr;
-  std::size_t position_stride = 3 * sizeof(float);
-  float* normals = nullptr;
-  std::size_t normal_stride = 3 * sizeof(float);
 };
 
 /// Evaluates blocks [block_begin, block_end) of `plan` with the pose's packed patches

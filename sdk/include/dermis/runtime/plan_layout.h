@@ -38,9 +38,9 @@ enum PlanField : int {
 /// Floats of one block: 4 corners x kPlanFields x kPlanLanes.
 constexpr std::size_t kPlanBlockFloats = 4 * kPlanFields * kPlanLanes;
 
-/// Floats per packed patch: 27 coefficients (coordinate-major, c_mn at 9k + 3m + n), the
-/// fallback normal, 2 of padding.
-constexpr std::size_t kPackedPatchFloats = 32;
+/// Floats per packed patch in the buffer PackPatches() writes: 27 coefficients
+/// (coordinate-major, c_mn at 9k + 3m + n), the fallback normal, 2 of padding.
+constexpr std::size_t kPackedPatchStride = 32;
 
 /// One block: up to kPlanLanes samples of one control face.
 struct PlanBlock {
@@ -57,13 +57,13 @@ struct PlanView {
   const float* data;  ///< kPlanBlockFloats per block.
 };
 
-/// Where the kernels write: positions and (optionally) normals, 3 floats each, at byte
-/// strides.
-struct PlanOutput {
-  float* positions;
-  std::size_t position_stride;
-  float* normals;
-  std::size_t normal_stride;
+/// Caller-owned output of EvaluatePlan() and of every kernel: sample i's position (3 floats)
+/// at positions + i * position_stride bytes, its unit normal likewise (normals may be null).
+struct PlanOutputBuffers {
+  float* positions = nullptr;
+  std::size_t position_stride = 3 * sizeof(float);
+  float* normals = nullptr;
+  std::size_t normal_stride = 3 * sizeof(float);
 };
 
 }  // namespace dermis

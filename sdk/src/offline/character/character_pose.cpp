@@ -109,9 +109,9 @@ Status CharacterPoser::Build(const Character& ch, const CharacterPoseOptions& op
   st->character = &ch;
   st->options = options;
   const std::string& source = ch.asset.source;
-  if (options.deformer != DeformerKind::kLbs && options.deformer != DeformerKind::kDqs &&
-      options.deformer != DeformerKind::kSweep) {
-    return Status::InvalidInput(source + ": unknown deformer");
+  if (FindDeformer(options.deformer) == nullptr) {
+    return Status::InvalidInput(source + ": unknown deformer " +
+                                std::to_string(static_cast<unsigned>(options.deformer)));
   }
   CharacterExportOptions export_options;
   export_options.level = options.level;

@@ -162,7 +162,7 @@ DERMIS_INLINE void AccumulateCorner(const float* patch, const float* data, V3* s
 
 // Blocks [begin, end) of a plan into caller-owned strided float buffers.
 DERMIS_INLINE void EvaluateBlocks(const PlanView& plan, const float* patches, std::size_t begin,
-                                  std::size_t end, const PlanOutput& out) {
+                                  std::size_t end, const PlanOutputBuffers& out) {
   for (std::size_t b = begin; b < end; ++b) {
     const PlanBlock& block = plan.blocks[b];
     const float* data = plan.data + b * kPlanBlockFloats;
@@ -171,7 +171,7 @@ DERMIS_INLINE void EvaluateBlocks(const PlanView& plan, const float* patches, st
     for (int a = 0; a < 4; ++a) {
       const std::int32_t v = block.chart[a];
       if (v < 0) continue;
-      const float* patch = patches + static_cast<std::size_t>(v) * kPackedPatchFloats;
+      const float* patch = patches + static_cast<std::size_t>(v) * kPackedPatchStride;
       const float* corner = data + a * kPlanFields * kPlanLanes;
       if (block.displaced & (1u << a)) {
         AccumulateCorner<true>(patch, corner, &s, &su, &sv);
@@ -200,7 +200,7 @@ DERMIS_INLINE void EvaluateBlocks(const PlanView& plan, const float* patches, st
           nrm[2] = n.z[i];
         } else {
           const float* fb =
-              patches + static_cast<std::size_t>(block.dominant[i]) * kPackedPatchFloats + 27;
+              patches + static_cast<std::size_t>(block.dominant[i]) * kPackedPatchStride + 27;
           nrm[0] = fb[0];
           nrm[1] = fb[1];
           nrm[2] = fb[2];

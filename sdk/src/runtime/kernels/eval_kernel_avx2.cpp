@@ -1,12 +1,13 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The evaluation kernel (eval_kernel.h) compiled for one instruction set: avx2.
 #include "runtime/kernels/eval_kernel.h"
+#include "runtime/kernels/kernels.h"
 
-namespace dermis {
+namespace dermis::kernels {
 
-void EvaluatePlanBlocks_avx2(const PlanView& plan, const float* patches, std::size_t begin,
-                             std::size_t end, const PlanOutput& out) {
+void EvaluateBlocksAvx2(const PlanView& plan, const float* patches, std::size_t begin,
+                        std::size_t end, const PlanOutputBuffers& out) {
   plan_kernel::EvaluateBlocks(plan, patches, begin, end, out);
 }
 
-}  // namespace dermis
+}  // namespace dermis::kernels

@@ -1,12 +1,13 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The evaluation kernel (eval_kernel.h) compiled for one instruction set: generic.
 #include "runtime/kernels/eval_kernel.h"
+#include "runtime/kernels/kernels.h"
 
-namespace dermis {
+namespace dermis::kernels {
 
-void EvaluatePlanBlocks_generic(const PlanView& plan, const float* patches, std::size_t begin,
-                                std::size_t end, const PlanOutput& out) {
+void EvaluateBlocksGeneric(const PlanView& plan, const float* patches, std::size_t begin,
+                           std::size_t end, const PlanOutputBuffers& out) {
   plan_kernel::EvaluateBlocks(plan, patches, begin, end, out);
 }
 
-}  // namespace dermis
+}  // namespace dermis::kernels
