@@ -1,8 +1,8 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Deformer quality benchmark: LBS, DQS and the sweep deformer side by side.
 //
-// Part 1, the cylinder experiment of docs/sweep.md section 3: a solid cylinder (radius 1, x in
-// [-4, 4]) on a 3-joint chain (joints at x = -4, 0, 4), smoothstep weights over |x| < h (h = 1
+// Part 1, the cylinder experiment of docs/notes/sweep.md section 3: a solid cylinder (radius 1,
+// x in [-4, 4]) on a 3-joint chain (joints at x = -4, 0, 4), smoothstep weights over |x| < h (h = 1
 // and 1.5). Bend joint 1 about z by 90/120/150 degrees and report occupied volume, signed
 // volume, folded volume and the thickness at the joint; twist it about x (animated 0..360
 // degrees) and report the minimum radius, the largest twist rate and frame-to-frame jumps.
@@ -465,7 +465,8 @@ void RunCylinder(double spacing, double voxel_ratio, int ring_points, double twi
       static_cast<double>(solid.cells.size()) * solid.dx * solid.dyz * solid.dyz;
 
   std::printf(
-      "== Cylinder bend (sweep.md section 3): solid r=1, x in [-4,4], joints at x=-4,0,4;\n"
+      "== Cylinder bend (docs/notes/sweep.md section 3): solid r=1, x in [-4,4], joints at "
+      "x=-4,0,4;\n"
       "   grid spacing %.4f x %.4f, %zu cells, %zu nodes, voxel lattice %.4f, rest lattice count "
       "%zu\n"
       "   (rest volume %.4f vs pi*8 = %.4f); smoothstep weights over |x|<h, h=1 | h=1.5\n",
@@ -517,7 +518,8 @@ void RunCylinder(double spacing, double voxel_ratio, int ring_points, double twi
     }
   }
   std::printf(
-      "   (sweep.md [exp] at h=1: lbs 90: occ 0.964 thick 1.41; dqs 90: occ 0.994 folded "
+      "   (docs/notes/sweep.md [exp] at h=1: lbs 90: occ 0.964 thick 1.41; dqs 90: occ 0.994 "
+      "folded "
       "0.003 thick 2.00)\n");
   std::printf("   bend part: %.1f s\n\n", Seconds(start));
 
@@ -553,7 +555,8 @@ void RunCylinder(double spacing, double voxel_ratio, int ring_points, double twi
     }
   }
   std::printf(
-      "   (sweep.md: minR at 90/180: lbs 0.707/0, dqs 1/1, sweep 1/1; rate: dqs ~3.0 at h=1, "
+      "   (docs/notes/sweep.md: minR at 90/180: lbs 0.707/0, dqs 1/1, sweep 1/1; rate: dqs ~3.0 at "
+      "h=1, "
       "sweep pi/4 = 0.785 over a bone of length 4)\n");
   std::printf("   twist part: %.1f s\n\n", Seconds(twist_start));
   PrintDefinitions();

@@ -8,7 +8,7 @@
 # Input: ../shared/data/scans/stanford-bunny.obj (--small: bunny-npm-1839v.obj, 200 control
 # vertices, smaller pictures). Exit 77 (skipped) when the shared data is absent. Writes under
 # OUT_DIR (default out/multiresolution): bunny.dsurf, bunny_fit.json, levels.png (one view per
-# level), levels_NNN.png and errors.md (distance from the surface to the scan per level).
+# level), levels_NNN.png and $out/errors.md (distance from the surface to the scan per level).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out=out/multiresolution

@@ -789,7 +789,7 @@ TEST_CASE("gltf import: existing external buffer next to the .gltf", "[gltf][imp
   CHECK(asset.meshes.at(0).primitives.at(0).positions.at(1) == glm::vec3(1, 0, 0));
 }
 
-// ---- the shared sample characters (facts from ../shared/data/README.md) ----
+// ---- the shared sample characters (facts from the README of the shared data folder) ----
 
 struct SampleFacts {
   const char* file;

@@ -7,7 +7,8 @@
 
 using namespace dermis;
 
-TEST_CASE("C-infinity step matches the reference values of manifold.md section 4", "[blend]") {
+TEST_CASE("C-infinity step matches the reference values of docs/notes/manifold.md section 4",
+          "[blend]") {
   const double t[5] = {0.1, 0.25, 0.5, 0.75, 0.9};
   const double ref[5] = {0.998619, 0.886948, 0.5, 0.113052, 0.001381};
   for (int i = 0; i < 5; ++i)
@@ -60,7 +61,7 @@ TEST_CASE("the four corner weights of a face sum to one", "[blend]") {
     for (double lb : {0.125, 0.05, 0.3}) {
       for (int i = 0; i < 2000; ++i) {
         const double s = rng.Next(), t = rng.Next();
-        // Corner coordinates of the 4 corners (manifold.md section 0).
+        // Corner coordinates of the 4 corners (docs/notes/manifold.md section 0).
         const Vec2 cd[4] = {{s, t}, {t, 1 - s}, {1 - s, 1 - t}, {1 - t, s}};
         double sum = 0.0;
         Vec2 gsum(0.0);

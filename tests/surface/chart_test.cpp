@@ -25,7 +25,8 @@ std::vector<ChartParams> AllCharts() {
 }
 }  // namespace
 
-TEST_CASE("characteristic-map exponents match the table of manifold.md section 2", "[chart]") {
+TEST_CASE("characteristic-map exponents match the table of docs/notes/manifold.md section 2",
+          "[chart]") {
   const double p[10] = {1.285963, 1.0,      0.862527, 0.786666, 0.740552,
                         0.710481, 0.689801, 0.674979, 0.663996, 0.655634};
   for (int k = 3; k <= 12; ++k) {

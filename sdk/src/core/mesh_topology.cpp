@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Half-edge construction with manifold validation and counter-clockwise one-rings
-// (manifold.md section 0: the next face around a vertex is twin(prev(h)), as in Ying-Zorin's
-// gpmesh `edge = conj(prev(edge))`).
+// (docs/notes/manifold.md section 0: the next face around a vertex is twin(prev(h)), as in
+// Ying-Zorin's gpmesh `edge = conj(prev(edge))`).
 #include "dermis/core/mesh_topology.h"
 
 #include <algorithm>

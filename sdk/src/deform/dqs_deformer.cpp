@@ -1,6 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Dual-quaternion skinning (Kavan, Collins, Zara, O'Sullivan 2008; sweep.md section 3, "DQS"),
-// the second baseline. Each skin matrix M_j = R_j S_j + t_j is split into its rigid part
+// Dual-quaternion skinning (Kavan, Collins, Zara, O'Sullivan 2008; docs/notes/sweep.md section 3,
+// "DQS"), the second baseline. Each skin matrix M_j = R_j S_j + t_j is split into its rigid part
 // (rotation R_j by polar decomposition, translation t_j) and its stretch S_j. Per vertex the
 // stretches are blended linearly and applied first (the two-phase variant), then the rigid
 // parts are blended as unit dual quaternions, each flipped into the hemisphere of the strongest

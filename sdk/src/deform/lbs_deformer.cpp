@@ -1,5 +1,5 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Linear blend skinning of control vertices, the baseline (sweep.md section 3, "LBS"):
+// Linear blend skinning of control vertices, the baseline (docs/notes/sweep.md section 3, "LBS"):
 // x' = sum_j w_j M_j x, normals by the inverse transpose of the blended matrix.
 #include <algorithm>
 #include <vector>

@@ -1,12 +1,12 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Sweep-based deformation of control vertices (Hyun et al. 2005, "Sweep-based human
-// deformation", as reconstructed in sweep.md section 1 and docs/deformation.md; used on the
-// control mesh as in [Y] section 5).
+// deformation", as reconstructed in docs/notes/sweep.md section 1 and docs/deformation.md; used on
+// the control mesh as in [Y] section 5).
 //
 // A chain J0..Jn of the skeleton becomes a sweep S(s) = C(s) + F(s) diag(sigma, sigma, 1) E:
-// - trajectory C (sweep.md 1.1): the bone lines, with a circular arc tangent to both bones in a
-//   blend zone of half-length h_j around each interior joint; rest arc length s maps linearly
-//   to each straight piece and to the arc angle;
+// - trajectory C (docs/notes/sweep.md section 1.1): the bone lines, with a circular arc tangent
+//   to both bones in a blend zone of half-length h_j around each interior joint; rest arc length s
+//   maps linearly to each straight piece and to the arc angle;
 // - frames F (1.2): the start joint's rotation transported along C (rotation-minimising: constant
 //   on straight pieces, rotated about the arc axis on arcs, exact for circles), times a twist
 //   about the tangent that is linear in s between the joints' twists; each twist is the
@@ -21,7 +21,7 @@
 // to, storing the offset in the start-transported frame. Several chains blend by weight; joints
 // on no chain (branch joints, and the last joint of every chain, which has no bone: a hand, a head)
 // are deformed by DQS with the vertex's original weights and blended in by their share (shape
-// blending, sweep.md 2).
+// blending, docs/notes/sweep.md section 2).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -114,9 +114,9 @@ double BumpSquaredIntegral(double a, double w) {
          (w / (8.0 * kPi)) * std::sin(2.0 * kPi * a / w);
 }
 
-/// Blend half-length at joint j for bend theta (sweep.md 1.6): the arc radius h / tan(theta/2)
-/// must stay above the skin radius r for the cross sections not to cross inside the bend, so
-/// h grows as r tan(theta / 2) (with a 10 % margin) from its base value up to its cap.
+/// Blend half-length at joint j for bend theta (docs/notes/sweep.md section 1.6): the arc radius h
+/// / tan(theta/2) must stay above the skin radius r for the cross sections not to cross inside the
+/// bend, so h grows as r tan(theta / 2) (with a 10 % margin) from its base value up to its cap.
 double BlendHalfLength(const Chain& c, std::size_t j, double theta, bool grow) {
   double h = c.h_base[j];
   if (grow && theta > kMinBend) {

@@ -1,6 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// The skeleton of one glTF skin as the deformers see it (sweep.md section 2): joint parents
-// within the skin and bind matrices from the inverse bind matrices.
+// The skeleton of one glTF skin as the deformers see it (docs/notes/sweep.md section 2): joint
+// parents within the skin and bind matrices from the inverse bind matrices.
 #include <cmath>
 #include <map>
 #include <string>

@@ -1,6 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Partition-of-unity steps of Ying-Zorin (manifold.md section 4): the C-infinity "analytic"
-// step (S1 pou1d / S2 blendFunc1D) and the C2 cubic B-spline step 1 - C(3t).
+// Partition-of-unity steps of Ying-Zorin (docs/notes/manifold.md section 4): the C-infinity
+// "analytic" step (S1 pou1d / S2 blendFunc1D) and the C2 cubic B-spline step 1 - C(3t).
 #include "dermis/surface/blend.h"
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Evaluation of multilevel cubic B-spline displacements (Lee, Wolberg and Shin 1997, as used by
-// Yoon section 4-5; fitting.md section 1: basis, lattice indexing, per-level storage).
+// Yoon section 4-5; docs/notes/fit.md section 1: basis, lattice indexing, per-level storage).
 #include "dermis/surface/bspline_displacement.h"
 
 #include <algorithm>

@@ -1,6 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Ying-Zorin chart maps (manifold.md sections 0, 2, 3, 7; S1 Vfcd2xy / Vfcd2Fcd / Fcdv2Vfcd).
-// z = e^{i f Theta/K} r^p e^{i q alpha} for w = r e^{i alpha} in ring face f, q = 2 Theta/(pi K).
+// Ying-Zorin chart maps (docs/notes/manifold.md sections 0, 2, 3 and 7; S1 Vfcd2xy / Vfcd2Fcd /
+// Fcdv2Vfcd). z = e^{i f Theta/K} r^p e^{i q alpha} for w = r e^{i alpha} in ring face f,
+// q = 2 Theta/(pi K).
 #include "dermis/surface/chart.h"
 
 #include <algorithm>
@@ -48,7 +49,8 @@ ChartParams MakeChartParams(int valence, VertexKind kind, ChartType type) {
       break;
     case ChartType::kCharacteristicMap:
       // Inside: log2(1/lambda_K). On a boundary the Catmull-Clark crease/corner rules have
-      // subdominant eigenvalue 1/2, so p = 1 (manifold.md section 7; concave corner p = 1).
+      // subdominant eigenvalue 1/2, so p = 1 (docs/notes/manifold.md section 7; concave corner
+      // p = 1).
       c.p = (kind == VertexKind::kInterior && c.valence >= 3)
                 ? std::log2(1.0 / CatmullClarkSubdominantEigenvalue(c.valence))
                 : 1.0;

@@ -1,5 +1,5 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Manifold domain: charts per vertex, transitions through face coordinates (manifold.md
+// Manifold domain: charts per vertex, transitions through face coordinates (docs/notes/manifold.md
 // section 3) and the local-patch refit of Yoon Eq. 2 as one precomputed linear operator.
 #include "dermis/surface/manifold_domain.h"
 

@@ -1,6 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Evaluation of the blended surface D(W) = sum_a psi_a(W) S_a(theta(W)) (Yoon Eq. 4) with
-// S_a = P_a + d_a N_a (Eq. 3), following manifold.md section 6: corner weights in face
+// S_a = P_a + d_a N_a (Eq. 3), following docs/notes/manifold.md section 6: corner weights in face
 // coordinates, the "one chart" shortcut on [0, lb]^2 and normals from the dominant corner chart.
 #include "dermis/surface/surface_evaluator.h"
 

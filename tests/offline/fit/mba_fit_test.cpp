@@ -1,5 +1,5 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Multilevel B-spline approximation (fitting.md section 1): refinement is exact, truncation
+// Multilevel B-spline approximation (docs/notes/fit.md section 1): refinement is exact, truncation
 // equals the coarser fit, a smooth function is reproduced and the error falls with levels.
 #include "dermis/offline/fit/mba_fit.h"
 

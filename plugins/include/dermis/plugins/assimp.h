@@ -3,7 +3,7 @@
 /// \brief Import of FBX, COLLADA, OBJ, PLY and every other format Assimp 5.2 reads into the
 /// neutral asset module (meshes, materials, node hierarchy, skins, animations). Never used
 /// for glTF, which tinygltf owns (Assimp 5.2 misreads normalised weights and quantised
-/// positions, gltf-ecosystem.md section 4).
+/// positions, docs/notes/gltf-importers.md).
 #pragma once
 
 #include <string>

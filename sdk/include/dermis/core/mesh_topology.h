@@ -2,12 +2,12 @@
 /// \file
 /// \brief Half-edge connectivity of a polygon mesh with ordered vertex one-rings.
 ///
-/// Conventions (manifold.md section 0): faces are counter-clockwise. The half-edge h of corner k
-/// of face f runs from corner k to corner k+1 and has index face_offset(f) + k. Around a vertex
-/// the incident faces are numbered counter-clockwise so that the edge to the *previous* corner
-/// of ring face i is the edge to the *next* corner of ring face i+1 (the d-axis of face i is the
-/// c-axis of face i+1). On a boundary vertex ring face 0 is the face whose outgoing edge lies on
-/// the boundary, and the ring is open.
+/// Conventions (docs/notes/manifold.md section 0): faces are counter-clockwise. The half-edge h of
+/// corner k of face f runs from corner k to corner k+1 and has index face_offset(f) + k. Around a
+/// vertex the incident faces are numbered counter-clockwise so that the edge to the *previous*
+/// corner of ring face i is the edge to the *next* corner of ring face i+1 (the d-axis of face i is
+/// the c-axis of face i+1). On a boundary vertex ring face 0 is the face whose outgoing edge lies
+/// on the boundary, and the ring is open.
 #pragma once
 
 #include <functional>

@@ -72,7 +72,7 @@ struct Character {
 /// The rig of skin `skin` of `asset` as the deformers see it: joint j's parent is the index,
 /// within the skin's joint list, of the nearest ancestor node of joint j that is itself one of
 /// the skin's joints (-1 if none); its bind matrix is the inverse of its inverse bind matrix
-/// (sweep.md section 2: not the node's rest transform, and the skinned mesh node's own
+/// (docs/notes/sweep.md section 2: not the node's rest transform, and the skinned mesh node's own
 /// transform plays no part); names are the joint nodes' names.
 Status MakeSkinRig(const Asset& asset, Index skin, SkinRig* out);
 

@@ -8,7 +8,7 @@
 /// coefficients change (PackPatches()), and EvaluatePlan() runs the blended displaced surface,
 /// its derivatives and unit normals with no allocation. The scalar reference is
 /// EvaluateSurface() (surface_evaluator.h); the fast path agrees with it within float
-/// rounding (tests/runtime/evaluation_plan_test.cpp, docs/performance.md).
+/// rounding (test `runtime: the fast path equals the scalar reference`, docs/performance.md).
 #pragma once
 
 #include <cstddef>

@@ -16,7 +16,7 @@ constexpr int kPlanLanes = 8;
 /// Per-corner fields of a block, each kPlanLanes floats: chart point (x, y), displacement value
 /// and gradient (d, gx, gy), weight psi and its face derivatives (psi_u, psi_v), and the
 /// weighted chart-to-face Jacobian psi * dz/d(u, v) (m00 = psi dx/du, m01 = psi dy/du,
-/// m10 = psi dx/dv, m11 = psi dy/dv). In the one-chart region of a corner (manifold.md
+/// m10 = psi dx/dv, m11 = psi dy/dv). In the one-chart region of a corner (docs/notes/manifold.md
 /// section 6) psi = 1 and the Jacobian is the identity: the normal is then taken from the
 /// chart derivatives themselves, as the scalar evaluator does.
 enum PlanField : int {

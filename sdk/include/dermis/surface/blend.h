@@ -1,6 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
-/// \brief Partition of unity of the Ying-Zorin manifold (manifold.md section 4).
+/// \brief Partition of unity of the Ying-Zorin manifold (docs/notes/manifold.md section 4).
 ///
 /// A chart's weight in a face is a product of two 1-D steps in its corner coordinates (c, d):
 /// psi = beta(tau(c)) * beta(tau(d)), tau(x) = (x - lb) / (ub - lb), lb + ub = 1. Because

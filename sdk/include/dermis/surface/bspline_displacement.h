@@ -1,13 +1,13 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
 /// \brief Multilevel uniform cubic B-spline displacement functions, one per chart (paper Eq. 3,
-/// section 5 "multi-level representations"; fitting.md section 1).
+/// section 5 "multi-level representations"; docs/notes/fit.md section 1).
 ///
 /// Chart v's function lives on the square [-R_v, R_v]^2 of chart coordinates. Level k (0-based)
 /// has 2^k cells per side and a (2^k + 3)^2 lattice of coefficients. Level k's lattice stores
 /// the *merged* function Psi_k = sum of the fitted levels 0..k (refined to level k), so
 /// evaluating with any number of levels costs 16 reads, and level-of-detail switching is a
-/// choice of lattice (fitting.md section 1, storage option (b)).
+/// choice of lattice (docs/notes/fit.md section 1, storage option (b)).
 #pragma once
 
 #include <cstdint>

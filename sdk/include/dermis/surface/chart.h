@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
 /// \brief Ying-Zorin charts: corner maps, chart maps, their inverses and Jacobians
-/// (manifold.md sections 0, 2, 3 and 7).
+/// (docs/notes/manifold.md sections 0, 2, 3 and 7).
 ///
 /// Face coordinates W = (s, t) in [0,1]^2 put corner 0 at (0,0), 1 at (1,0), 2 at (1,1), 3 at
 /// (0,1). Corner a has local coordinates w = (c, d) with the corner at 0, the c-axis along the
@@ -17,7 +17,7 @@
 
 namespace dermis {
 
-/// How the radius of a chart is scaled (manifold.md section 2).
+/// How the radius of a chart is scaled (docs/notes/manifold.md section 2).
 enum class ChartType : std::uint8_t {
   /// p = log2(1 / lambda_K), lambda_K the subdominant eigenvalue of Catmull-Clark subdivision
   /// at valence K (p = 1 on boundaries). Follows Catmull-Clark spacing. Default.
@@ -28,7 +28,7 @@ enum class ChartType : std::uint8_t {
   kIsodistance = 2,
 };
 
-/// What kind of chart a vertex gets (manifold.md section 7).
+/// What kind of chart a vertex gets (docs/notes/manifold.md section 7).
 enum class VertexKind : std::uint8_t {
   kInterior = 0,       ///< Full disk, sector 2 pi.
   kCrease = 1,         ///< Boundary vertex, half disk, sector pi.

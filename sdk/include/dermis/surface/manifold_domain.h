@@ -25,9 +25,10 @@ struct DomainOptions {
   ChartType chart_type = ChartType::kCharacteristicMap;
   BlendType blend_type = BlendType::kCInfinity;
   /// Lower end of the blending window; ub = 1 - lb. Must lie in (0, 1/2): lb > 0 keeps the
-  /// partition of unity smooth at extraordinary vertices (manifold.md section 7). Ying-Zorin
-  /// use 1/8; a wide window (small lb) spreads the transition between disagreeing patches over
-  /// the whole face and avoids folds on irregular control meshes (docs/math.md), hence 0.01.
+  /// partition of unity smooth at extraordinary vertices (docs/notes/manifold.md section 7).
+  /// Ying-Zorin use 1/8; a wide window (small lb) spreads the transition between disagreeing
+  /// patches over the whole face and avoids folds on irregular control meshes (docs/math.md), hence
+  /// 0.01.
   double blend_lb = 0.01;
 };
 
@@ -84,8 +85,9 @@ class ManifoldDomain {
   /// Face and face coordinates of point z of vertex v's chart. Returns false if z lies outside
   /// the chart's star (a boundary sector, or beyond the incident faces).
   bool ChartToFace(Index v, Vec2 z, Index* face, Vec2* uv) const;
-  /// Transition map theta_{ij} (manifold.md section 3): chart point z of vertex i expressed in
-  /// the chart of vertex j. Returns false when j is not a corner of the face that contains z.
+  /// Transition map theta_{ij} (docs/notes/manifold.md section 3): chart point z of vertex i
+  /// expressed in the chart of vertex j. Returns false when j is not a corner of the face that
+  /// contains z.
   bool Transition(Index i, Vec2 z, Index j, Vec2* zj) const;
 
  private:

@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
 /// \brief Evaluation of the blended domain surface and the displaced surface at (face, u, v)
-/// (paper Eq. 3-4, manifold.md section 6).
+/// (paper Eq. 3-4, docs/notes/manifold.md section 6).
 #pragma once
 
 #include <cstddef>

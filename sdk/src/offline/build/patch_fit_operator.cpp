@@ -1,6 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Yoon Eq. 2 as a linear operator: constrained least squares P(0) = v over the one-ring chart
-// positions (manifold.md section 5), made unique in rank-deficient cases by the smallest
+// positions (docs/notes/manifold.md section 5), made unique in rank-deficient cases by the smallest
 // thin-plate energy among all least-squares minimisers (our choice; docs/math.md).
 #include "dermis/offline/build/patch_fit_operator.h"
 

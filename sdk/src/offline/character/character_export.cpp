@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Export builders for characters: `bound` re-evaluates the original vertices at their fitted
-// parameters (paper Eq. 4), `lod` tessellates each fitted part (manifold.md section 6) and
-// transfers skin weights and UVs from the original triangles.
+// parameters (paper Eq. 4), `lod` tessellates each fitted part (docs/notes/manifold.md section 6)
+// and transfers skin weights and UVs from the original triangles.
 #include "dermis/offline/character/character_export.h"
 
 #include <algorithm>

@@ -1,9 +1,9 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Posing a fitted character offline ([Y] section 5, sweep.md section 1.7): the skeleton's pose
-// deforms the control vertices, the patches are refitted (ManifoldDomain::FitPatches) and the
-// displaced surface is evaluated with the unchanged displacements (paper Eq. 3-4) at the bound
-// vertices or the tessellation samples. Plus the static asset of a pose and the morph-target
-// bake of every clip.
+// Posing a fitted character offline ([Y] section 5, docs/notes/sweep.md section 1.7): the
+// skeleton's pose deforms the control vertices, the patches are refitted
+// (ManifoldDomain::FitPatches) and the displaced surface is evaluated with the unchanged
+// displacements (paper Eq. 3-4) at the bound vertices or the tessellation samples. Plus the static
+// asset of a pose and the morph-target bake of every clip.
 #include "dermis/offline/character/character_pose.h"
 
 #include <algorithm>

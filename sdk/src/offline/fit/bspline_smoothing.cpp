@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Smoothing spline on one B-spline lattice: penalised least squares with the discrete
-// thin-plate energy (fitting.md section 4c; the idea of SINTEF's LSMG, penalised least squares
-// started from an MBA solution), solved matrix-free by Jacobi-preconditioned conjugate
+// thin-plate energy (docs/notes/fit.md section 4c; the idea of SINTEF's LSMG, penalised least
+// squares started from an MBA solution), solved matrix-free by Jacobi-preconditioned conjugate
 // gradients. Written here rather than with Eigen's ConjugateGradient: the operator is two
 // stencils and a scatter over the points, and assembling it as a sparse matrix cost more than
 // the solve (measured on the bunny: 0.28 s against 0.05 s for the displacement stage).

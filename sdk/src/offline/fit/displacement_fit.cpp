@@ -1,6 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Per-chart displacement fitting by multilevel B-spline approximation (Yoon section 4,
-// "Optimal displacement function"; fitting.md sections 1 and 6 for the domain and the level
+// "Optimal displacement function"; docs/notes/fit.md sections 1 and 6 for the domain and the level
 // choice).
 #include "dermis/offline/fit/displacement_fit.h"
 

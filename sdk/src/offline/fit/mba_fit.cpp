@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Multilevel B-spline approximation: the BA step, the coarse-to-fine residual loop and the
-// refinement that merges levels (Lee, Wolberg and Shin 1997; fitting.md section 1). The finest
-// level may repeat its BA on its own residual and then be re-solved as a smoothing spline
+// refinement that merges levels (Lee, Wolberg and Shin 1997; docs/notes/fit.md section 1). The
+// finest level may repeat its BA on its own residual and then be re-solved as a smoothing spline
 // (bspline_smoothing.cpp; docs/fitting.md, "The finest level"). Written
 // here rather than taken from a library: the MIT one (ddemidov/mba) is not packaged in Debian
 // and keeps no per-level lattices, which the runtime level of detail needs.

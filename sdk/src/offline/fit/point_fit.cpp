@@ -1,6 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Per-point projection (Yoon section 4, "Initial displacements") and the common-displacement
-// optimisation that replaces the paper's Powell search on Eq. 5 (fitting.md section 4b).
+// optimisation that replaces the paper's Powell search on Eq. 5 (docs/notes/fit.md section 4b).
 #include "dermis/offline/fit/point_fit.h"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// The fit of Yoon section 4 end to end, and its error metrics (fitting.md section 3:
+// The fit of Yoon section 4 end to end, and its error metrics (docs/notes/fit.md section 3:
 // E1 at the fitted parameters, E2 on held-out points, E3 two-sided Hausdorff, Metro style).
 #include "dermis/offline/fit/surface_fit.h"
 

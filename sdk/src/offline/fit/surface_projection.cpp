@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Projection of data points onto Yoon's bi-quadratic local patches (paper section 4) and the
 // common-displacement Newton solve that replaces the paper's Powell search on Eq. 5
-// (fitting.md sections 4b and 5).
+// (docs/notes/fit.md sections 4b and 5).
 #include "dermis/offline/fit/surface_projection.h"
 
 #include <cmath>

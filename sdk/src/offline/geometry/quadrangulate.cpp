@@ -1,6 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // One Catmull-Clark style topological split (face points and edge points) turning any polygon
-// mesh into quads (manifold.md section 1, "(inferred)"); linear positions keep input vertices.
+// mesh into quads (docs/notes/manifold.md section 1, "(inferred)"); linear positions keep input
+// vertices.
 #include "dermis/offline/geometry/quadrangulate.h"
 
 #include "dermis/core/mesh_topology.h"

@@ -2,7 +2,7 @@
 /// \file
 /// \brief Penalised least squares for one uniform cubic B-spline lattice: the smoothing spline
 /// that replaces the plain BA step at each chart's finest level (docs/fitting.md, "Finest
-/// level: a smoothing spline"; fitting.md section 4c).
+/// level: a smoothing spline"; docs/notes/fit.md section 4c).
 #pragma once
 
 #include <cstddef>

@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
 /// \brief Fits the multilevel B-spline displacement of every chart to displacement samples
-/// (paper section 4, "Optimal displacement function"; fitting.md sections 1 and 6).
+/// (paper section 4, "Optimal displacement function"; docs/notes/fit.md sections 1 and 6).
 #pragma once
 
 #include <vector>
@@ -17,7 +17,7 @@ struct DisplacementFitOptions {
   /// Upper bound on the levels of any chart (1 .. kMaxBsplineLevels).
   int max_levels = 8;
   /// Levels per chart: the finest lattice has about `density` * sqrt(samples) cells per side
-  /// (fitting.md section 6), so the lattice spacing follows the local point spacing. 0 gives
+  /// (docs/notes/fit.md section 6), so the lattice spacing follows the local point spacing. 0 gives
   /// every chart `max_levels`.
   double density = 1.0;
   /// BA passes at each chart's finest level (MbaOptions::finest_passes), >= 1.
@@ -30,7 +30,7 @@ struct DisplacementFitOptions {
 
 /// Half side of chart v's square domain: it holds the image of every point where the chart's
 /// weight is positive (|w| < sqrt(2) ub in each ring face, so |z| < (sqrt(2) ub)^p), padded by
-/// 2%. Depends only on the chart, never on the data (fitting.md section 1).
+/// 2%. Depends only on the chart, never on the data (docs/notes/fit.md section 1).
 double ChartHalfExtent(const ChartParams& chart, double blend_lb);
 
 /// The number of levels chosen for a chart with `samples` samples.

@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
 /// \brief Multilevel B-spline approximation (MBA) of scattered values on one chart
-/// (Lee, Wolberg and Shin 1997; fitting.md section 1).
+/// (Lee, Wolberg and Shin 1997; docs/notes/fit.md section 1).
 #pragma once
 
 #include <cstddef>
@@ -39,8 +39,8 @@ void FitMultilevelBspline(const Vec2* z, const double* values, std::size_t count
                           std::vector<double>* residuals = nullptr,
                           const MbaOptions& options = MbaOptions{});
 
-/// Cubic B-spline midpoint refinement (fitting.md section 1): the level-(k+1) lattice, (2m+3)^2,
-/// of the function of a level-k lattice with m cells per side. Exact on [0, m]^2.
+/// Cubic B-spline midpoint refinement (docs/notes/fit.md section 1): the level-(k+1) lattice,
+/// (2m+3)^2, of the function of a level-k lattice with m cells per side. Exact on [0, m]^2.
 void RefineBsplineLattice(const double* coarse, int m, double* fine);
 
 }  // namespace dermis

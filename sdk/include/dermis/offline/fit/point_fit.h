@@ -53,8 +53,8 @@ struct PointFitOptions {
 
 /// Projects every point (paper section 4): closest control face, its nearest corner, Newton on
 /// that corner's patch, transitions to the other corners of the face and a few Newton steps on
-/// each; then solves Q(z) + delta N~(z) = p (fitting.md 4b) from the projection. Results are
-/// per point, independent of the thread count.
+/// each; then solves Q(z) + delta N~(z) = p (docs/notes/fit.md section 4b) from the projection.
+/// Results are per point, independent of the thread count.
 void FitPoints(const ControlSurface& surface, const std::vector<Vec3>& points,
                const PointFitOptions& options, std::vector<PointFit>* out);
 

@@ -2,7 +2,7 @@
 /// \file
 /// \brief The whole fit of paper section 4: a dense mesh or point cloud to a control mesh, its
 /// manifold domain and per-chart multilevel B-spline displacements, with error metrics
-/// (fitting.md section 3: E1, held-out E2, two-sided Hausdorff E3).
+/// (docs/notes/fit.md section 3: E1, held-out E2, two-sided Hausdorff E3).
 #pragma once
 
 #include <cstdint>

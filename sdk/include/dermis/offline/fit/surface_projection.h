@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
 /// \brief Point projection onto local patches and onto the blended domain surface
-/// (paper section 4, "Initial displacements" and Eq. 5; fitting.md sections 4b and 5).
+/// (paper section 4, "Initial displacements" and Eq. 5; docs/notes/fit.md sections 4b and 5).
 #pragma once
 
 #include "dermis/core/types.h"
@@ -31,12 +31,12 @@ int CornerOfVertex(const ManifoldDomain& domain, Index face, Index v);
 bool InsideChart(const ManifoldDomain& domain, Index v, Vec2 z);
 
 /// Closest point of one bi-quadratic patch to p by Newton's method on |P(z) - p|^2 / 2 from z0
-/// (fitting.md section 5): Gauss-Newton where the Hessian is not positive definite,
+/// (docs/notes/fit.md section 5): Gauss-Newton where the Hessian is not positive definite,
 /// backtracking, at most `max_iterations` steps. Returns the parameter; the patch is a
 /// polynomial, so the result may lie outside the chart (check with InsideChart()).
 Vec2 ProjectOntoPatch(const LocalPatch& patch, const Vec3& p, Vec2 z0, int max_iterations);
 
-/// Result of solving Q(z) + delta N~(z) = p (fitting.md section 4b).
+/// Result of solving Q(z) + delta N~(z) = p (docs/notes/fit.md section 4b).
 struct CommonDisplacementSolution {
   bool converged = false;
   Index face = kInvalidIndex;
