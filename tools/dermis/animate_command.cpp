@@ -23,6 +23,8 @@
 namespace dermis::cli {
 namespace {
 
+constexpr const char* kCommand = "animate";
+
 struct AnimateArgs {
   std::string input;
   std::string output;
@@ -37,11 +39,6 @@ struct AnimateArgs {
   int threads = 0;
   bool quiet = false;
 };
-
-int Fail(const Status& s) {
-  std::fprintf(stderr, "dermis animate: error: %s\n", s.message().c_str());
-  return kExitFailure;
-}
 
 /// Shortest decimal form that reads back to the same double.
 std::string FormatSeconds(double t) {
@@ -78,37 +75,30 @@ Status WritePosedObj(const std::string& path, const CharacterPoser& poser,
 int RunAnimate(const AnimateArgs& a) {
   const bool obj = LowerExtension(a.output) == ".obj";
   if (!obj && !IsGltfPath(a.output)) {
-    std::fprintf(stderr,
-                 "dermis animate: error: %s: the output must be .obj, .glb or .gltf\n"
-                 "Run 'dermis animate --help' for usage.\n",
-                 a.output.c_str());
-    return kExitUsage;
+    return Usage(kCommand, a.output + ": the output must be .obj, .glb or .gltf");
   }
   Character ch;
   Status s = ReadCharacter(a.input, &ch);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   int clip = -1;
   s = ResolveClip(ch.asset, a.input, a.clip, &clip);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   if (clip < 0 && a.time_given && a.time != 0.0) {
-    return Fail(Status::InvalidInput(
-        a.input + ": --time applies to a clip, not to the rest pose (" + ClipList(ch.asset) + ")"));
+    return Fail(kCommand, Status::InvalidInput(
+                              a.input + ": --time applies to a clip, not to the rest pose (" +
+                              ClipList(ch.asset) + ")"));
   }
   CharacterPoseOptions options;
   s = MakePoseOptions(a.deformer, a.mode, a.level, a.displacement_levels, a.threads, &options);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   CharacterPoser poser;
   s = CharacterPoser::Build(ch, options, &poser);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   std::vector<PosedPrimitive> posed;
   s = poser.PoseClip(clip, a.time, a.fps, &posed);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
 
-  const std::filesystem::path parent = std::filesystem::path(a.output).parent_path();
-  if (!parent.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(parent, ec);
-  }
+  MakeParentFolder(a.output);
   const std::string what = clip < 0 ? std::string("rest pose")
                                     : "clip " + std::to_string(clip) + " '" +
                                           ch.asset.animations[static_cast<std::size_t>(clip)].name +
@@ -127,7 +117,7 @@ int RunAnimate(const AnimateArgs& a) {
       s = ExportGltf(out, gltf, a.output);
     }
   }
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   if (!a.quiet) {
     std::size_t vertices = 0;
     for (const PosedPrimitive& p : posed) vertices += p.positions.size();
@@ -183,19 +173,12 @@ void AddAnimateCommand(CLI::App* app, std::function<int()>* run) {
                   "sweep's twist unwrapping follows the motion; same steps as export --bake-sweep)")
       ->check(CLI::Range(0.001, 1000.0))
       ->capture_default_str();
-  cmd->add_option("--threads", args->threads, "Threads (0: all cores); results do not vary")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
-  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+  AddThreadsOption(cmd, &args->threads);
+  AddQuietFlag(cmd, &args->quiet);
   CLI::Option* time = cmd->get_option("--time");
-  auto force = AddForceFlag(cmd);
-  cmd->callback([run, args, time, force]() {
-    args->time_given = time->count() > 0;
-    *run = [args, force]() {
-      const int rc = CheckOverwrite("animate", {args->output}, *force);
-      return rc != kExitOk ? rc : RunAnimate(*args);
-    };
-  });
+  SetRunWithOutputs(
+      cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
+      [args] { return RunAnimate(*args); }, [args, time] { args->time_given = time->count() > 0; });
 }
 
 }  // namespace dermis::cli

@@ -9,11 +9,38 @@
 #include <string>
 #include <vector>
 
+#include "dermis/core/status.h"
+
 namespace dermis::cli {
 
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
+
+/// Prints "dermis COMMAND: error: MESSAGE" (the status's message, which names the file) on
+/// stderr and returns kExitFailure.
+int Fail(const char* command, const Status& status);
+
+/// Prints "dermis COMMAND: error: MESSAGE" and the hint "Run 'dermis COMMAND --help' for usage."
+/// on stderr and returns kExitUsage.
+int Usage(const char* command, const std::string& message);
+
+/// Creates the folder that is to hold `path`, if it has one (errors show up when the file is
+/// written).
+void MakeParentFolder(const std::string& path);
+
+/// Adds -q,--quiet ("print nothing but errors") to `cmd`.
+void AddQuietFlag(CLI::App* cmd, bool* quiet);
+
+/// Adds --threads N (0: all cores) to `cmd`; `prefix` starts the help text (e.g. "--bake-sweep: ").
+void AddThreadsOption(CLI::App* cmd, int* threads, const std::string& prefix = "");
+
+/// Finishes a subcommand that writes files: adds -f,--force and sets its callback so that
+/// `*run` refuses (CheckOverwrite) any of `outputs()` that exists unless --force is given, then
+/// returns `body()`. `at_parse`, if set, runs when the subcommand is parsed.
+void SetRunWithOutputs(CLI::App* cmd, std::function<int()>* run, const char* command,
+                       std::function<std::vector<std::string>()> outputs, std::function<int()> body,
+                       std::function<void()> at_parse = nullptr);
 
 /// Adds -f,--force ("overwrite existing outputs") to `cmd`; the returned flag is set by parsing.
 std::shared_ptr<bool> AddForceFlag(CLI::App* cmd);

@@ -21,6 +21,8 @@
 namespace dermis::cli {
 namespace {
 
+constexpr const char* kCommand = "export";
+
 struct ExportArgs {
   std::string input;
   std::string output;
@@ -71,21 +73,14 @@ Status Bake(const ExportArgs& a, const Character& ch, Asset* out, CharacterBakeR
   return BuildBakedAsset(&poser, a.fps, out, report);
 }
 
-int Fail(const Status& s) {
-  std::fprintf(stderr, "dermis export: error: %s\n", s.message().c_str());
-  return kExitFailure;
-}
-
 int RunExport(const ExportArgs& a) {
   if (!IsGltfPath(a.output)) {
-    std::fprintf(stderr, "dermis export: error: %s: the output must be .glb or .gltf\n",
-                 a.output.c_str());
-    return kExitUsage;
+    return Usage(kCommand, a.output + ": the output must be .glb or .gltf");
   }
   std::string bytes;
   Character ch;
   Status s = ReadCharacter(a.input, &ch, nullptr, &bytes);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   CharacterExportOptions options;
   options.level = a.level;
   options.displacement_levels = a.displacement_levels;
@@ -99,18 +94,14 @@ int RunExport(const ExportArgs& a) {
   } else {
     s = BuildLodAsset(ch, options, &out, &notes);
   }
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   GltfExportOptions gltf;
   gltf.max_influences = a.max_influences;
   gltf.generator = std::string("Dermis ") + DERMIS_VERSION;
   if (a.embed) gltf.dsurf_bytes = bytes;
-  const std::filesystem::path parent = std::filesystem::path(a.output).parent_path();
-  if (!parent.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(parent, ec);
-  }
+  MakeParentFolder(a.output);
   s = ExportGltf(out, gltf, a.output);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   if (!a.quiet) {
     for (const std::string& n : notes) std::fprintf(stderr, "dermis export: note: %s\n", n.c_str());
     std::size_t vertices = 0;
@@ -167,18 +158,11 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
   AddDeformerOption(cmd, "--deformer", "--bake-sweep: deformer of the control vertices",
                     &args->deformer)
       ->capture_default_str();
-  cmd->add_option("--threads", args->threads,
-                  "--bake-sweep: threads (0: all cores); results do not vary")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
-  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
-  auto force = AddForceFlag(cmd);
-  cmd->callback([run, args, force]() {
-    *run = [args, force]() {
-      const int rc = CheckOverwrite("export", {args->output}, *force);
-      return rc != kExitOk ? rc : RunExport(*args);
-    };
-  });
+  AddThreadsOption(cmd, &args->threads, "--bake-sweep: ");
+  AddQuietFlag(cmd, &args->quiet);
+  SetRunWithOutputs(
+      cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
+      [args] { return RunExport(*args); });
 }
 
 }  // namespace dermis::cli

@@ -23,6 +23,8 @@
 namespace dermis::cli {
 namespace {
 
+constexpr const char* kCommand = "fit";
+
 struct FitArgs {
   std::string input;
   std::string output;
@@ -40,19 +42,6 @@ struct FitArgs {
   double control_ratio = CharacterFitOptions{}.vertex_ratio;
   bool refit = false;
 };
-
-int Fail(const Status& s) {
-  std::fprintf(stderr, "dermis fit: error: %s\n", s.message().c_str());
-  return kExitFailure;
-}
-
-void MakeParent(const std::string& path) {
-  const std::filesystem::path p(path);
-  if (p.has_parent_path()) {
-    std::error_code ec;
-    std::filesystem::create_directories(p.parent_path(), ec);
-  }
-}
 
 nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   nlohmann::ordered_json j;
@@ -125,17 +114,17 @@ Json CharacterReportJson(const FitArgs& a, const Character& ch, const CharacterF
 int RunFitCharacter(const FitArgs& a) {
   ImportedAsset imported;
   Status s = Importers().ImportAsset(a.input, &imported);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   const Asset& asset = imported.asset;
   const std::string& embedded = imported.embedded_dsurf;
-  MakeParent(a.output);
+  MakeParentFolder(a.output);
   if (!embedded.empty() && !a.refit) {
     // A Dermis export with the .dsurf embedded: take it back as it was (lossless).
     Character check;
     s = ParseCharacter(embedded, a.input + ": extension DERMIS_displaced_surface", &check);
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
     s = WriteFileAtomically(a.output, embedded);
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
     if (!a.quiet) {
       std::fprintf(stderr,
                    "dermis fit: %s carries a Dermis surface (DERMIS_displaced_surface); wrote it "
@@ -158,13 +147,13 @@ int RunFitCharacter(const FitArgs& a) {
   CharacterFitReport report;
   s = FitCharacter(asset, options, &ch, &report);
   progress.Clear();
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   s = WriteFileAtomically(a.output, SerializeCharacter(ch));
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
-    MakeParent(a.report);
+    MakeParentFolder(a.report);
     s = WriteFileAtomically(a.report, CharacterReportJson(a, ch, report).dump(2) + "\n");
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet) {
     std::fprintf(
@@ -192,13 +181,14 @@ int RunFit(const FitArgs& a) {
   PolygonMesh mesh;
   Index dropped = 0;
   Status s = ReadFitInput(a.input, &mesh, &dropped, &Importers());
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   PolygonMesh control;
   if (!a.control_mesh.empty()) {
     s = ReadObj(a.control_mesh, &control);
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
   } else if (mesh.num_faces() == 0) {
-    return Fail(Status::InvalidInput(a.input + ": a point cloud (no faces) needs --control-mesh"));
+    return Fail(kCommand,
+                Status::InvalidInput(a.input + ": a point cloud (no faces) needs --control-mesh"));
   }
   FitInput input;
   input.points = mesh.positions;
@@ -220,16 +210,16 @@ int RunFit(const FitArgs& a) {
   FitReport report;
   s = FitSurface(input, options, &fitted, &report);
   progress.Clear();
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   const std::string bytes = SerializeDsurf(
       *fitted.surface.domain, fitted.surface.control.positions.data(), fitted.displacement.get());
-  MakeParent(a.output);
+  MakeParentFolder(a.output);
   s = WriteFileAtomically(a.output, bytes);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
-    MakeParent(a.report);
+    MakeParentFolder(a.report);
     s = WriteFileAtomically(a.report, ReportJson(a, report).dump(2) + "\n");
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet) {
     std::fprintf(stderr,
@@ -292,9 +282,7 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--holdout", args->holdout, "Fraction of points held out to measure error")
       ->check(CLI::Range(0.0, 0.9))
       ->capture_default_str();
-  cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
+  AddThreadsOption(cmd, &args->threads);
   cmd->add_option("--control-ratio", args->control_ratio,
                   "Characters: control vertices per welded mesh vertex")
       ->check(CLI::Range(0.01, 1.0))
@@ -302,14 +290,13 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
-  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
-  auto force = AddForceFlag(cmd);
-  cmd->callback([run, args, force]() {
-    *run = [args, force]() {
-      const int rc = CheckOverwrite("fit", {args->output, args->report}, *force);
-      return rc != kExitOk ? rc : RunFit(*args);
-    };
-  });
+  AddQuietFlag(cmd, &args->quiet);
+  SetRunWithOutputs(
+      cmd, run, kCommand,
+      [args] {
+        return std::vector<std::string>{args->output, args->report};
+      },
+      [args] { return RunFit(*args); });
 }
 
 }  // namespace dermis::cli

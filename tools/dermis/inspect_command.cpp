@@ -30,6 +30,8 @@
 namespace dermis::cli {
 namespace {
 
+constexpr const char* kCommand = "inspect";
+
 constexpr const char* kInspectSchema = "dermis.inspect/1";
 
 struct InspectArgs {
@@ -402,8 +404,7 @@ int RunInspect(const InspectArgs& a) {
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(a.input, ec);
   if (ec || !std::filesystem::is_regular_file(a.input, ec)) {
-    std::fprintf(stderr, "dermis inspect: %s: cannot open\n", a.input.c_str());
-    return kExitFailure;
+    return Fail(kCommand, Status::IoError(a.input + ": cannot open"));
   }
   const std::string ext = LowerExtension(a.input);
   Json report;
@@ -413,10 +414,7 @@ int RunInspect(const InspectArgs& a) {
   report["bytes"] = size;
   const Status s =
       ext == ".dsurf" ? InspectDsurf(a.input, &report) : InspectAssetFile(a.input, &report);
-  if (!s.ok()) {
-    std::fprintf(stderr, "dermis inspect: error: %s\n", s.message().c_str());
-    return kExitFailure;
-  }
+  if (!s.ok()) return Fail(kCommand, s);
   if (a.json) {
     std::printf("%s\n", report.dump(2, ' ', false, Json::error_handler_t::replace).c_str());
   } else {

@@ -1,36 +1,10 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The dermis command-line tool.
 #include <cstdio>
-#include <filesystem>
 #include <functional>
 #include <string>
 
 #include "commands.h"
-
-namespace dermis::cli {
-
-std::shared_ptr<bool> AddForceFlag(CLI::App* cmd) {
-  auto force = std::make_shared<bool>(false);
-  cmd->add_flag("-f,--force", *force, "Overwrite output files that exist");
-  return force;
-}
-
-int CheckOverwrite(const std::string& command, const std::vector<std::string>& paths, bool force) {
-  if (force) return kExitOk;
-  for (const std::string& p : paths) {
-    std::error_code ec;
-    if (!p.empty() && std::filesystem::exists(p, ec)) {
-      std::fprintf(stderr,
-                   "dermis %s: error: %s exists; pass --force to overwrite it\nRun 'dermis %s "
-                   "--help' for usage.\n",
-                   command.c_str(), p.c_str(), command.c_str());
-      return kExitUsage;
-    }
-  }
-  return kExitOk;
-}
-
-}  // namespace dermis::cli
 
 int main(int argc, char** argv) {
   CLI::App app{

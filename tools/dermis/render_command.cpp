@@ -27,6 +27,8 @@
 namespace dermis::cli {
 namespace {
 
+constexpr const char* kCommand = "render";
+
 struct RenderArgs {
   std::string input;
   std::string output;
@@ -52,17 +54,6 @@ struct RenderArgs {
   bool force = false;
   bool quiet = false;
 };
-
-int Fail(const Status& s) {
-  std::fprintf(stderr, "dermis render: error: %s\n", s.message().c_str());
-  return kExitFailure;
-}
-
-int Usage(const std::string& message) {
-  std::fprintf(stderr, "dermis render: error: %s\nRun 'dermis render --help' for usage.\n",
-               message.c_str());
-  return kExitUsage;
-}
 
 glm::vec3 F(const Vec3& v) { return glm::vec3(v); }
 
@@ -181,12 +172,13 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
   const bool error_map = a.heatmap == "error";
   // A plain surface: no pose; the error map needs the data it was fitted to.
   if (a.frames > 0 || !a.clip.empty() || a.time_given || !a.compare.empty()) {
-    return Usage(a.input +
-                 " is a surface without a skeleton: --clip, --time, --frames "
-                 "and --compare apply to characters");
+    return Usage(kCommand, a.input +
+                               " is a surface without a skeleton: --clip, --time, --frames "
+                               "and --compare apply to characters");
   }
   if (error_map && a.reference.empty()) {
-    return Usage("--heatmap error on a surface needs --reference MESH (the data it was fitted to)");
+    return Usage(kCommand,
+                 "--heatmap error on a surface needs --reference MESH (the data it was fitted to)");
   }
   // One surface per displacement level of --series (or the one --displacement-levels).
   std::vector<int> levels = {a.displacement_levels};
@@ -199,8 +191,8 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
       int L = -2;
       const auto r = std::from_chars(item.data(), item.data() + item.size(), L);
       if (r.ec != std::errc() || r.ptr != item.data() + item.size() || L < -1 || L > 16) {
-        return Usage("--series '" + a.series +
-                     "' must list displacement levels -1..16, e.g. 0,2,4");
+        return Usage(kCommand, "--series '" + a.series +
+                                   "' must list displacement levels -1..16, e.g. 0,2,4");
       }
       levels.push_back(L);
       at = comma + 1;
@@ -209,14 +201,14 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
   std::vector<std::vector<render::Mesh>> surfaces(levels.size());
   for (std::size_t k = 0; k < levels.size(); ++k) {
     const Status s = SurfaceMesh(a, surface, levels[k], &surfaces[k]);
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
   }
   std::vector<std::string> stats(levels.size());
   if (error_map) {
     PolygonMesh ref;
     Index dropped = 0;
     const Status s = ReadFitInput(a.reference, &ref, &dropped, &Importers());
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
     std::vector<std::uint32_t> tris;
     for (Index f = 0; f < ref.num_faces(); ++f) {
       const Index* fv = ref.face_vertices.data() + ref.face_offsets[f];
@@ -226,7 +218,7 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
                      static_cast<std::uint32_t>(fv[k + 1])});
       }
     }
-    if (tris.empty()) return Fail(Status::InvalidInput(a.reference + ": has no faces"));
+    if (tris.empty()) return Fail(kCommand, Status::InvalidInput(a.reference + ": has no faces"));
     TriangleDistanceTree tree;  // once for every level
     tree.Build(ref.positions, tris);
     float range = 0.0f;
@@ -281,10 +273,10 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
   std::vector<std::string> captions;
   int clip = -1;
   Status s = ResolveClip(ch.asset, a.input, a.clip, &clip);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   if (clip < 0 && (a.frames > 0 || (a.time_given && a.time != 0.0))) {
-    return Fail(Status::InvalidInput(a.input + ": --time and --frames apply to a clip (" +
-                                     ClipList(ch.asset) + ")"));
+    return Fail(kCommand, Status::InvalidInput(a.input + ": --time and --frames apply to a clip (" +
+                                               ClipList(ch.asset) + ")"));
   }
   // One poser per deformer drawn: the primary one, and --compare's as a second row.
   std::vector<std::string> deformers = {a.deformer};
@@ -293,9 +285,9 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
   for (std::size_t k = 0; k < deformers.size(); ++k) {
     CharacterPoseOptions po;
     s = MakePoseOptions(deformers[k], a.mode, a.level, a.displacement_levels, 0, &po);
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
     s = CharacterPoser::Build(ch, po, &posers[k]);
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
   }
   CharacterPoser& poser = posers[0];
   // The times to draw.
@@ -312,7 +304,7 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
   if (error_map) {
     std::vector<PosedPrimitive> rest;
     s = poser.PoseClip(-1, 0.0, a.fps, &rest);
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
     std::vector<render::Mesh> rest_meshes = PosedMeshes(poser, rest);
     std::vector<Vec3> ref;
     std::vector<std::uint32_t> tris;
@@ -332,7 +324,7 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
     for (double t : times) {
       std::vector<PosedPrimitive> posed;
       s = posers[k].PoseClip(clip, t, a.fps, &posed);
-      if (!s.ok()) return Fail(s);
+      if (!s.ok()) return Fail(kCommand, s);
       std::vector<render::Mesh> meshes = PosedMeshes(posers[k], posed);
       std::size_t at = 0;
       for (render::Mesh& m : meshes) {
@@ -371,26 +363,29 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
 int RunRender(const RenderArgs& a) {
   int width = 0, height = 0;
   if (!ParseSize(a.size, &width, &height)) {
-    return Usage("--size '" + a.size + "' must be WxH with 16 <= W, H <= 8192");
+    return Usage(kCommand, "--size '" + a.size + "' must be WxH with 16 <= W, H <= 8192");
   }
   if (LowerExtension(a.output) != ".png")
-    return Usage(a.output + ": the output must be a .png file");
-  if (a.frames > 0 && a.turntable > 0) return Usage("--frames and --turntable exclude each other");
+    return Usage(kCommand, a.output + ": the output must be a .png file");
+  if (a.frames > 0 && a.turntable > 0)
+    return Usage(kCommand, "--frames and --turntable exclude each other");
   if (!a.compare.empty() && a.turntable > 0)
-    return Usage("--compare and --turntable exclude each other");
-  if (const int rc = CheckOverwrite("render", {a.output}, a.force); rc != kExitOk) return rc;
+    return Usage(kCommand, "--compare and --turntable exclude each other");
+  if (const int rc = CheckOverwrite(kCommand, {a.output}, a.force); rc != kExitOk) return rc;
   std::string bytes;
   {
     const Status s = ReadFileBytes(a.input, "the input", &bytes);
-    if (!s.ok()) return Fail(s);
+    if (!s.ok()) return Fail(kCommand, s);
   }
   if (DsurfFileVersion(bytes) == 0) {
-    return Fail(Status::InvalidInput(a.input + ": not a .dsurf file (fit a mesh or character "
+    return Fail(kCommand,
+                Status::InvalidInput(a.input + ": not a .dsurf file (fit a mesh or character "
                                                "with 'dermis fit' first)"));
   }
   Character ch;
   std::uint32_t version = 0;
-  if (const Status s = ParseCharacter(bytes, a.input, &ch, &version); !s.ok()) return Fail(s);
+  if (const Status s = ParseCharacter(bytes, a.input, &ch, &version); !s.ok())
+    return Fail(kCommand, s);
   render::View view;
   view.width = width;
   view.height = height;
@@ -402,18 +397,15 @@ int RunRender(const RenderArgs& a) {
                                           : RenderCharacter(a, ch, &view, &images);
   if (rc != kExitOk) return rc;
 
+  MakeParentFolder(a.output);
   const std::filesystem::path parent = std::filesystem::path(a.output).parent_path();
-  if (!parent.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(parent, ec);
-  }
   if (a.frame_files && images.size() > 1) {
     const std::string stem = (parent / std::filesystem::path(a.output).stem()).string();
     for (std::size_t k = 0; k < images.size(); ++k) {
       char suffix[32];
       std::snprintf(suffix, sizeof(suffix), "_%03zu.png", k);
       const Status s = render::WritePng(stem + suffix, images[k]);
-      if (!s.ok()) return Fail(s);
+      if (!s.ok()) return Fail(kCommand, s);
     }
   }
   // Default layout: one row per deformer with --compare, else about square.
@@ -424,7 +416,7 @@ int RunRender(const RenderArgs& a) {
           : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(images.size()))));
   const render::Image out = images.size() == 1 ? images[0] : render::ContactSheet(images, columns);
   const Status s = render::WritePng(a.output, out);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   if (!a.quiet) {
     std::fprintf(
         stderr, "dermis render: %zu view%s, %dx%d%s\nwrote %s\n", images.size(),
@@ -499,7 +491,7 @@ void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
                   "Surfaces: one view per displacement level listed (e.g. 0,2,4,-1; -1: all), "
                   "as a contact sheet; with --heatmap error each is captioned with its error");
   cmd->add_flag("-f,--force", args->force, "Overwrite output files that exist");
-  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+  AddQuietFlag(cmd, &args->quiet);
   CLI::Option* time = cmd->get_option("--time");
   cmd->callback([run, args, time]() {
     args->time_given = time->count() > 0;

@@ -19,6 +19,8 @@
 namespace dermis::cli {
 namespace {
 
+constexpr const char* kCommand = "tessellate";
+
 struct TessellateArgs {
   std::string input;
   std::string builtin;
@@ -33,11 +35,6 @@ struct TessellateArgs {
 
 bool IsDsurf(const std::string& path) { return LowerExtension(path) == ".dsurf"; }
 
-int Fail(const Status& s) {
-  std::fprintf(stderr, "dermis tessellate: error: %s\n", s.message().c_str());
-  return kExitFailure;
-}
-
 Status WriteTessellation(const TessellateArgs& a, const ManifoldDomain& domain,
                          const LocalPatch* patches, const Displacement* displacement,
                          const std::string& header, std::size_t* vertices, std::size_t* triangles) {
@@ -49,11 +46,7 @@ Status WriteTessellation(const TessellateArgs& a, const ManifoldDomain& domain,
                        pattern.samples.size(), positions.data(), normals.data())) {
     return Status::Internal("a tessellation sample could not be evaluated");
   }
-  const std::filesystem::path out_path(a.output);
-  if (out_path.has_parent_path()) {
-    std::error_code ec;
-    std::filesystem::create_directories(out_path.parent_path(), ec);
-  }
+  MakeParentFolder(a.output);
   *vertices = positions.size();
   *triangles = pattern.triangles.size() / 3;
   return WriteObj(a.output, positions, normals, pattern.triangles, header);
@@ -62,7 +55,7 @@ Status WriteTessellation(const TessellateArgs& a, const ManifoldDomain& domain,
 int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_point t0) {
   DisplacedSurface surface;
   Status s = ReadDsurf(a.input, &surface);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   std::vector<LocalPatch> patches(surface.rest_positions.size());
   surface.domain->FitPatches(surface.rest_positions.data(), patches.data());
   const int available = surface.displacement ? surface.displacement->max_levels() : 0;
@@ -76,7 +69,7 @@ int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_
                         "dermis tessellate " + a.input + " --level " + std::to_string(a.level) +
                             " --displacement-levels " + std::to_string(levels),
                         &nv, &nt);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   if (!a.quiet) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -93,15 +86,12 @@ int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_
 int RunTessellate(const TessellateArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   if (a.input.empty() == a.builtin.empty()) {
-    std::fprintf(stderr,
-                 "dermis tessellate: error: give exactly one of INPUT or --builtin NAME\n"
-                 "Run 'dermis tessellate --help' for usage.\n");
-    return kExitUsage;
+    return Usage(kCommand, "give exactly one of INPUT or --builtin NAME");
   }
   if (IsDsurf(a.input)) return RunTessellateDsurf(a, t0);
   PolygonMesh mesh;
   Status s = a.builtin.empty() ? ReadObj(a.input, &mesh) : MakeBuiltinMesh(a.builtin, &mesh);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   const Index dropped = CompactUnusedVertices(&mesh);
   if (dropped > 0 && !a.quiet) {
     std::fprintf(stderr,
@@ -117,12 +107,12 @@ int RunTessellate(const TessellateArgs& a) {
   options.blend_lb = a.blend_lb;
   ControlSurface surface;
   s = BuildControlSurface(mesh, options, &surface);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   std::size_t nv = 0, nt = 0;
   s = WriteTessellation(
       a, *surface.domain, surface.patches.data(), nullptr,
       "dermis tessellate " + mesh.source_name + " --level " + std::to_string(a.level), &nv, &nt);
-  if (!s.ok()) return Fail(s);
+  if (!s.ok()) return Fail(kCommand, s);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
@@ -164,14 +154,10 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--displacement-levels", args->displacement_levels,
                   "For a .dsurf: displacement levels to use (0: domain surface; default all)")
       ->check(CLI::Range(0, kMaxBsplineLevels));
-  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
-  auto force = AddForceFlag(cmd);
-  cmd->callback([run, args, force]() {
-    *run = [args, force]() {
-      const int rc = CheckOverwrite("tessellate", {args->output}, *force);
-      return rc != kExitOk ? rc : RunTessellate(*args);
-    };
-  });
+  AddQuietFlag(cmd, &args->quiet);
+  SetRunWithOutputs(
+      cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
+      [args] { return RunTessellate(*args); });
 }
 
 }  // namespace dermis::cli

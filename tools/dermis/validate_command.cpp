@@ -21,6 +21,8 @@
 namespace dermis::cli {
 namespace {
 
+constexpr const char* kCommand = "validate";
+
 struct ValidateArgs {
   std::string input;
   bool json = false;
