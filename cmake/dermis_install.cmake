@@ -1,12 +1,15 @@
 # `cmake --install`: headers, static libraries, the dermis tool, a CMake package
 # (find_package(dermis CONFIG) with dermis::core, dermis::runtime, dermis::deform, dermis::asset,
-# dermis::offline, dermis::gltf, dermis::assimp, dermis::plugins), its version file, and a
+# dermis::offline (its stages dermis::offline_geometry, _io, _build, _fit, _character),
+# dermis::gltf, dermis::assimp, dermis::plugins), its version file, and a
 # pkg-config file for the runtime (dermis-runtime.pc: core + runtime + deform, GLM only).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(dermis_install_targets dermis_core dermis_runtime dermis_deform dermis_asset dermis_offline
-                           dermis_gltf dermis_assimp dermis_plugins)
+                           dermis_offline_geometry dermis_offline_io dermis_offline_build
+                           dermis_offline_fit dermis_offline_character dermis_gltf
+                           dermis_assimp dermis_plugins)
 foreach(t ${dermis_install_targets})
   string(REPLACE "dermis_" "" short ${t})
   set_target_properties(${t} PROPERTIES EXPORT_NAME ${short})

@@ -43,3 +43,31 @@ foreach(f ${asset_files} ${plugin_files})
     endif()
   endforeach()
 endforeach()
+
+# Tests include only what their binary links (tests/CMakeLists.txt): the tests of a runtime-side
+# module see that module, what it is built on, and the offline stage that builds their fixtures,
+# through the test support of that stage. A test that needs more must say so here and there.
+set(test_rules
+  "core|dermis/core/|support/(meshes|temp_files)\\.h"
+  "deform|dermis/(core|deform)/"
+  "asset|dermis/(core|asset)/"
+  "surface|dermis/(core|surface)/|dermis/offline/(geometry|build|io)/|support/(domains|meshes)\\.h"
+  "dsurf|dermis/(core|surface|dsurf|runtime|asset)/|support/(characters|temp_files)\\.h"
+  "runtime|dermis/(core|surface|dsurf|runtime|deform|asset)/|dermis/dermis\\.h|dermis/offline/character/|support/(characters|domains)\\.h")
+foreach(rule ${test_rules})
+  string(FIND "${rule}" "|" bar)
+  string(SUBSTRING "${rule}" 0 ${bar} folder)
+  math(EXPR start "${bar} + 1")
+  string(SUBSTRING "${rule}" ${start} -1 allowed)
+  file(GLOB test_files ${ROOT}/tests/${folder}/*.cpp)
+  foreach(f ${test_files})
+    file(STRINGS ${f} includes REGEX "^#include \"")
+    foreach(line ${includes})
+      string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" header "${line}")
+      if(NOT header MATCHES "^(${allowed})")
+        message(FATAL_ERROR "${f}: the ${folder} tests may include only ${allowed}: '${header}'")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+message(STATUS "checked the includes of the runtime-side tests")

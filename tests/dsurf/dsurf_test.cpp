@@ -9,7 +9,7 @@
 
 #include "dermis/runtime/character.h"
 #include "support/temp_files.h"
-#include "test_meshes.h"
+#include "support/characters.h"
 
 using namespace dermis;
 

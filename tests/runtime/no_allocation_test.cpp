@@ -12,7 +12,7 @@
 
 #include "dermis/dermis.h"
 #include "dermis/runtime/runtime.h"
-#include "test_meshes.h"
+#include "support/characters.h"
 
 namespace {
 std::atomic<long> g_allocations{0};

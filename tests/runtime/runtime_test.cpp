@@ -15,7 +15,8 @@
 #include "dermis/offline/character/character_pose.h"
 #include "dermis/runtime/evaluation_plan.h"
 #include "dermis/surface/surface_evaluator.h"
-#include "test_meshes.h"
+#include "support/characters.h"
+#include "support/domains.h"
 
 namespace dermis {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "test_meshes.h"
+#include "support/domains.h"
 
 using namespace dermis;
 

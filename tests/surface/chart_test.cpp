@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "dermis/surface/manifold_domain.h"
-#include "test_meshes.h"
+#include "support/domains.h"
 
 using namespace dermis;
 

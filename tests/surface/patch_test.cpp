@@ -3,7 +3,7 @@
 
 #include "dermis/offline/build/patch_fit_operator.h"
 #include "dermis/surface/local_patch.h"
-#include "test_meshes.h"
+#include "support/domains.h"
 
 using namespace dermis;
 

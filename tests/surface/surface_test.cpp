@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "dermis/surface/surface_evaluator.h"
-#include "test_meshes.h"
+#include "support/domains.h"
 
 using namespace dermis;
 

@@ -6,7 +6,7 @@
 
 #include "dermis/offline/geometry/mesh_metrics.h"
 #include "dermis/offline/io/obj_io.h"
-#include "test_meshes.h"
+#include "support/domains.h"
 
 using namespace dermis;
 
