@@ -96,6 +96,12 @@ class MeshTopology {
   bool has_boundary() const { return has_boundary_; }
 
  private:
+  // The steps of Build(), in order, each on the members the previous ones filled.
+  Status CheckFaces(const ElementNamer* namer);  // sizes, ranges, repeats; halfedge_face_
+  Status LinkTwins(const ElementNamer* namer);   // twin_, edges, has_boundary_
+  Status OrderRings(const ElementNamer* namer);  // ring_, ring_offsets_, boundary vertices
+  void FindComponents();                         // face_component_, num_components_
+
   Index num_vertices_ = 0;
   bool all_quads_ = false;
   bool has_boundary_ = false;

@@ -175,21 +175,14 @@ Status BuildLodAsset(const Character& ch, const CharacterExportOptions& options,
 
 namespace character {
 
-Status BuildLodAssetWithSources(const Character& ch, const CharacterExportOptions& options,
-                                Asset* out, std::vector<std::string>* notes,
-                                SurfaceSources* sources) {
-  if (options.level < 1 || options.level > 64) {
-    return Status::InvalidInput("tessellation level must be in 1..64");
-  }
-  Asset a = ch.asset;
-  auto note = [&](const std::string& s) {
-    if (notes) notes->push_back(s);
-  };
-  // Residual primitives: what was not fitted stays as it was.
-  for (std::size_t m = 0; m < a.meshes.size(); ++m) {
+namespace {
+
+// Residual primitives: what was not fitted stays as it was.
+Status KeepUnfittedTriangles(const Character& ch, Asset* a) {
+  for (std::size_t m = 0; m < a->meshes.size(); ++m) {
     std::vector<AssetPrimitive> kept;
-    for (std::size_t p = 0; p < a.meshes[m].primitives.size(); ++p) {
-      AssetPrimitive prim = a.meshes[m].primitives[p];
+    for (std::size_t p = 0; p < a->meshes[m].primitives.size(); ++p) {
+      AssetPrimitive prim = a->meshes[m].primitives[p];
       const std::vector<VertexBinding>& bind = ch.bindings[m][p];
       bool any = false;
       for (const VertexBinding& b : bind) any = any || b.part != kInvalidIndex;
@@ -213,21 +206,131 @@ Status BuildLodAssetWithSources(const Character& ch, const CharacterExportOption
       prim.indices = std::move(rest);
       kept.push_back(std::move(prim));
     }
-    a.meshes[m].primitives = std::move(kept);
+    a->meshes[m].primitives = std::move(kept);
   }
-  // A plain surface (no source mesh) gets a mesh, a node and a scene of its own.
+  return Status::Ok();
+}
+
+// A plain surface (no source mesh) gets a mesh, a node and a scene of its own.
+void AddPlainSurfaceMeshes(const Character& ch, Asset* a) {
   for (std::size_t k = 0; k < ch.parts.size(); ++k) {
     if (ch.parts[k].mesh >= 0) continue;
     AssetMesh mesh;
     mesh.name = "dermis_surface_" + std::to_string(k);
-    a.meshes.push_back(mesh);
+    a->meshes.push_back(mesh);
     AssetNode node;
     node.name = mesh.name;
-    node.mesh = static_cast<Index>(a.meshes.size() - 1);
-    a.nodes.push_back(node);
-    if (a.scenes.empty()) a.scenes.emplace_back(), a.default_scene = 0;
-    a.scenes[0].nodes.push_back(static_cast<Index>(a.nodes.size() - 1));
+    node.mesh = static_cast<Index>(a->meshes.size() - 1);
+    a->nodes.push_back(node);
+    if (a->scenes.empty()) a->scenes.emplace_back(), a->default_scene = 0;
+    a->scenes[0].nodes.push_back(static_cast<Index>(a->nodes.size() - 1));
   }
+}
+
+// Part k tessellated at the export level: positions, normals and triangles of *prim (facing
+// outwards), the surface points in *x and the samples in *pattern.
+Status TessellatePart(const Character& ch, std::size_t k, const CharacterExportOptions& options,
+                      TessellationPattern* pattern, std::vector<Vec3>* x, AssetPrimitive* prim) {
+  const CharacterPart& part = ch.parts[k];
+  PartEval e;
+  Status s = MakePartEval(ch, static_cast<Index>(k), options.displacement_levels, &e);
+  if (!s.ok()) return s;
+  const DisplacedSurface& surf = part.surface;
+  s = TessellationPattern::Build(surf.domain->topology(), options.level, pattern);
+  if (!s.ok()) return s.WithContext(ch.asset.source);
+  const std::size_t n = pattern->samples.size();
+  x->assign(n, Vec3(0.0));
+  std::vector<Vec3> nrm(n);
+  if (!EvaluateSamples(*surf.domain, e.patches.data(), e.displacement, pattern->samples.data(), n,
+                       x->data(), nrm.data())) {
+    return Status::Internal(ch.asset.source + ": part " + std::to_string(k) +
+                            ": tessellation sample outside the domain");
+  }
+  prim->positions.resize(n);
+  prim->normals.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    prim->positions[i] = ToFloat((*x)[i]);
+    prim->normals[i] = glm::normalize(ToFloat(nrm[i] * e.orientation));
+  }
+  prim->indices = pattern->triangles;
+  if (e.orientation < 0.0) {
+    for (std::size_t t = 0; t + 2 < prim->indices.size(); t += 3) {
+      std::swap(prim->indices[t + 1], prim->indices[t + 2]);
+    }
+  }
+  return Status::Ok();
+}
+
+// Texture coordinates, material and skin weights of part k's tessellation, from the closest
+// point of the part's original triangles; the material and the texture coordinate sets are
+// those of the primitive with most triangles (sets not shared by all are dropped, with a note).
+void TransferFromOriginal(const Character& ch, std::size_t k, const std::vector<Vec3>& x,
+                          AssetPrimitive* prim, std::vector<std::string>* notes) {
+  const CharacterPart& part = ch.parts[k];
+  const std::size_t n = x.size();
+  const AssetMesh& src = ch.asset.meshes[static_cast<std::size_t>(part.mesh)];
+  const std::vector<PartTriangle> tris = PartTriangles(ch, static_cast<Index>(k));
+  std::vector<Vec3> corners;
+  std::vector<std::uint32_t> ids;
+  for (const PartTriangle& t : tris) {
+    const AssetPrimitive& sp = src.primitives[static_cast<std::size_t>(t.primitive)];
+    for (int c = 0; c < 3; ++c) {
+      ids.push_back(static_cast<std::uint32_t>(corners.size()));
+      corners.push_back(Vec3(sp.positions[t.v[c]]));
+    }
+  }
+  TriangleDistanceTree tree;
+  tree.Build(corners, ids);
+  std::vector<std::size_t> count(src.primitives.size(), 0);
+  for (const PartTriangle& t : tris) ++count[static_cast<std::size_t>(t.primitive)];
+  const std::size_t major =
+      static_cast<std::size_t>(std::max_element(count.begin(), count.end()) - count.begin());
+  const AssetPrimitive& mp = src.primitives[major];
+  prim->material = mp.material;
+  std::size_t uv_sets = mp.texcoords.size();
+  for (const PartTriangle& t : tris) {
+    uv_sets =
+        std::min(uv_sets, src.primitives[static_cast<std::size_t>(t.primitive)].texcoords.size());
+  }
+  if (uv_sets < mp.texcoords.size() && notes != nullptr) {
+    notes->push_back("mesh " + std::to_string(part.mesh) +
+                     ": texture coordinate sets not shared by all its primitives were dropped");
+  }
+  prim->texcoords.assign(uv_sets, std::vector<glm::vec2>(n));
+  const bool skinned = part.skin >= 0;
+  if (skinned) {
+    prim->joints.assign(1, std::vector<glm::u16vec4>(n));
+    prim->weights.assign(1, std::vector<glm::vec4>(n));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const ClosestPoint cp = tree.Query(x[i]);
+    const PartTriangle& t = tris[static_cast<std::size_t>(cp.triangle)];
+    const AssetPrimitive& sp = src.primitives[static_cast<std::size_t>(t.primitive)];
+    for (std::size_t u = 0; u < uv_sets; ++u) {
+      glm::dvec2 uv(0.0);
+      for (int c = 0; c < 3; ++c) uv += cp.barycentric[c] * glm::dvec2(sp.texcoords[u][t.v[c]]);
+      prim->texcoords[u][i] = glm::vec2(uv);
+    }
+    if (skinned) {
+      BlendInfluences(VertexInfluences(sp, t.v[0]), VertexInfluences(sp, t.v[1]),
+                      VertexInfluences(sp, t.v[2]), cp.barycentric, &prim->joints[0][i],
+                      &prim->weights[0][i]);
+    }
+  }
+}
+
+}  // namespace
+
+Status BuildLodAssetWithSources(const Character& ch, const CharacterExportOptions& options,
+                                Asset* out, std::vector<std::string>* notes,
+                                SurfaceSources* sources) {
+  if (options.level < 1 || options.level > 64) {
+    return Status::InvalidInput("tessellation level must be in 1..64");
+  }
+  Asset a = ch.asset;
+  Status s = KeepUnfittedTriangles(ch, &a);
+  if (!s.ok()) return s;
+  AddPlainSurfaceMeshes(ch, &a);
   if (sources != nullptr) {
     sources->assign(a.meshes.size(), {});
     for (std::size_t m = 0; m < a.meshes.size(); ++m) {
@@ -237,90 +340,16 @@ Status BuildLodAssetWithSources(const Character& ch, const CharacterExportOption
   Index plain_mesh = static_cast<Index>(ch.asset.meshes.size());
   for (std::size_t k = 0; k < ch.parts.size(); ++k) {
     const CharacterPart& part = ch.parts[k];
-    PartEval e;
-    Status s = MakePartEval(ch, static_cast<Index>(k), options.displacement_levels, &e);
-    if (!s.ok()) return s;
-    const DisplacedSurface& surf = part.surface;
     TessellationPattern pattern;
-    s = TessellationPattern::Build(surf.domain->topology(), options.level, &pattern);
-    if (!s.ok()) return s.WithContext(ch.asset.source);
-    const std::size_t n = pattern.samples.size();
-    std::vector<Vec3> x(n), nrm(n);
-    if (!EvaluateSamples(*surf.domain, e.patches.data(), e.displacement, pattern.samples.data(), n,
-                         x.data(), nrm.data())) {
-      return Status::Internal(ch.asset.source + ": part " + std::to_string(k) +
-                              ": tessellation sample outside the domain");
-    }
+    std::vector<Vec3> x;
     AssetPrimitive prim;
-    prim.positions.resize(n);
-    prim.normals.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      prim.positions[i] = ToFloat(x[i]);
-      prim.normals[i] = glm::normalize(ToFloat(nrm[i] * e.orientation));
-    }
-    prim.indices = pattern.triangles;
-    if (e.orientation < 0.0) {
-      for (std::size_t t = 0; t + 2 < prim.indices.size(); t += 3) {
-        std::swap(prim.indices[t + 1], prim.indices[t + 2]);
-      }
-    }
+    s = TessellatePart(ch, k, options, &pattern, &x, &prim);
+    if (!s.ok()) return s;
     const Index mesh_index = part.mesh >= 0 ? part.mesh : plain_mesh++;
-    if (part.mesh >= 0) {
-      // Transfer from the part's original triangles.
-      const AssetMesh& src = ch.asset.meshes[static_cast<std::size_t>(part.mesh)];
-      const std::vector<PartTriangle> tris = PartTriangles(ch, static_cast<Index>(k));
-      std::vector<Vec3> corners;
-      std::vector<std::uint32_t> ids;
-      std::vector<int> material_votes;
-      for (const PartTriangle& t : tris) {
-        const AssetPrimitive& sp = src.primitives[static_cast<std::size_t>(t.primitive)];
-        for (int c = 0; c < 3; ++c) {
-          ids.push_back(static_cast<std::uint32_t>(corners.size()));
-          corners.push_back(Vec3(sp.positions[t.v[c]]));
-        }
-      }
-      TriangleDistanceTree tree;
-      tree.Build(corners, ids);
-      // Texture coordinate sets and the material: those of the primitive with most triangles.
-      std::vector<std::size_t> count(src.primitives.size(), 0);
-      for (const PartTriangle& t : tris) ++count[static_cast<std::size_t>(t.primitive)];
-      const std::size_t major =
-          static_cast<std::size_t>(std::max_element(count.begin(), count.end()) - count.begin());
-      const AssetPrimitive& mp = src.primitives[major];
-      prim.material = mp.material;
-      std::size_t uv_sets = mp.texcoords.size();
-      for (const PartTriangle& t : tris) {
-        uv_sets = std::min(uv_sets,
-                           src.primitives[static_cast<std::size_t>(t.primitive)].texcoords.size());
-      }
-      if (uv_sets < mp.texcoords.size()) {
-        note("mesh " + std::to_string(part.mesh) +
-             ": texture coordinate sets not shared by all its primitives were dropped");
-      }
-      prim.texcoords.assign(uv_sets, std::vector<glm::vec2>(n));
-      const bool skinned = part.skin >= 0;
-      if (skinned) {
-        prim.joints.assign(1, std::vector<glm::u16vec4>(n));
-        prim.weights.assign(1, std::vector<glm::vec4>(n));
-      }
-      for (std::size_t i = 0; i < n; ++i) {
-        const ClosestPoint cp = tree.Query(x[i]);
-        const PartTriangle& t = tris[static_cast<std::size_t>(cp.triangle)];
-        const AssetPrimitive& sp = src.primitives[static_cast<std::size_t>(t.primitive)];
-        for (std::size_t u = 0; u < uv_sets; ++u) {
-          glm::dvec2 uv(0.0);
-          for (int c = 0; c < 3; ++c) uv += cp.barycentric[c] * glm::dvec2(sp.texcoords[u][t.v[c]]);
-          prim.texcoords[u][i] = glm::vec2(uv);
-        }
-        if (skinned) {
-          BlendInfluences(VertexInfluences(sp, t.v[0]), VertexInfluences(sp, t.v[1]),
-                          VertexInfluences(sp, t.v[2]), cp.barycentric, &prim.joints[0][i],
-                          &prim.weights[0][i]);
-        }
-      }
-    }
+    if (part.mesh >= 0) TransferFromOriginal(ch, k, x, &prim, notes);
     a.meshes[static_cast<std::size_t>(mesh_index)].primitives.push_back(std::move(prim));
     if (sources != nullptr) {
+      const std::size_t n = x.size();
       std::vector<VertexBinding> located(n);
       for (std::size_t i = 0; i < n; ++i) {
         located[i] = {static_cast<Index>(k), pattern.samples[i].face, pattern.samples[i].u,

@@ -128,6 +128,224 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh) {
   return out;
 }
 
+/// A mesh welded by exact position over all its primitives (glTF splits vertices at UV and
+/// normal seams), numbered by first use.
+struct WeldedMesh {
+  std::vector<Vec3> positions;
+  std::vector<VertexRef> representative;   ///< An original vertex of each welded one.
+  std::vector<std::vector<Index>> welded;  ///< [primitive][vertex] -> welded vertex, or none.
+  std::vector<std::uint32_t> triangles;    ///< Non-degenerate, in welded vertices.
+};
+
+WeldedMesh WeldMesh(const AssetMesh& mesh) {
+  WeldedMesh w;
+  std::map<std::array<std::uint32_t, 3>, Index> weld;
+  w.welded.resize(mesh.primitives.size());
+  for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const AssetPrimitive& prim = mesh.primitives[p];
+    w.welded[p].assign(prim.positions.size(), kInvalidIndex);
+    const std::vector<std::uint32_t> tris = PrimitiveTriangles(prim);
+    for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
+      std::uint32_t tri[3];
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = tris[t + static_cast<std::size_t>(k)];
+        if (w.welded[p][v] == kInvalidIndex) {
+          auto ins =
+              weld.emplace(PositionKey(prim.positions[v]), static_cast<Index>(w.positions.size()));
+          if (ins.second) {
+            w.positions.push_back(Vec3(prim.positions[v]));
+            w.representative.push_back({static_cast<Index>(p), static_cast<Index>(v)});
+          }
+          w.welded[p][v] = ins.first->second;
+        }
+        tri[k] = static_cast<std::uint32_t>(w.welded[p][v]);
+      }
+      if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
+      w.triangles.insert(w.triangles.end(), {tri[0], tri[1], tri[2]});
+    }
+  }
+  return w;
+}
+
+/// Connected components of a welded mesh (union-find), numbered by their first triangle.
+struct Components {
+  std::vector<Index> of_vertex;                     ///< Component of each welded vertex, or none.
+  std::vector<std::vector<std::size_t>> triangles;  ///< Offsets into WeldedMesh::triangles.
+};
+
+Components SplitComponents(const WeldedMesh& w) {
+  std::vector<Index> parent(w.positions.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (std::size_t t = 0; t < w.triangles.size(); t += 3) {
+    for (int k = 1; k < 3; ++k) {
+      const Index a = Find(&parent, static_cast<Index>(w.triangles[t])),
+                  b = Find(&parent,
+                           static_cast<Index>(w.triangles[t + static_cast<std::size_t>(k)]));
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  Components c;
+  std::map<Index, Index> component_of_root;
+  c.of_vertex.assign(w.positions.size(), kInvalidIndex);
+  for (std::size_t t = 0; t < w.triangles.size(); t += 3) {
+    const Index root = Find(&parent, static_cast<Index>(w.triangles[t]));
+    auto ins = component_of_root.emplace(root, static_cast<Index>(c.triangles.size()));
+    if (ins.second) c.triangles.emplace_back();
+    c.triangles[static_cast<std::size_t>(ins.first->second)].push_back(t);
+  }
+  for (std::size_t v = 0; v < w.positions.size(); ++v) {
+    auto it = component_of_root.find(Find(&parent, static_cast<Index>(v)));
+    if (it != component_of_root.end()) c.of_vertex[v] = it->second;
+  }
+  return c;
+}
+
+/// One component as a dense mesh with local vertex numbers (in welded order): `local` maps
+/// welded to local vertices, `global` local to welded.
+struct ComponentMesh {
+  PolygonMesh dense;
+  std::vector<Index> local, global;
+};
+
+ComponentMesh MakeComponentMesh(const WeldedMesh& w, const Components& components, std::size_t c,
+                                const std::string& name) {
+  ComponentMesh cm;
+  cm.local.assign(w.positions.size(), kInvalidIndex);
+  for (std::size_t v = 0; v < w.positions.size(); ++v) {
+    if (components.of_vertex[v] == static_cast<Index>(c)) {
+      cm.local[v] = static_cast<Index>(cm.global.size());
+      cm.global.push_back(static_cast<Index>(v));
+    }
+  }
+  cm.dense.source_name = name;
+  for (Index g : cm.global) cm.dense.positions.push_back(w.positions[g]);
+  for (std::size_t t : components.triangles[c]) {
+    cm.dense.AddFace(
+        {cm.local[w.triangles[t]], cm.local[w.triangles[t + 1]], cm.local[w.triangles[t + 2]]});
+  }
+  return cm;
+}
+
+/// Fits one component's surface (paper section 4): its vertices first (so point_fits[i] is
+/// vertex i's), then extra samples inside large triangles; a control-vertex count from the
+/// vertex ratio. Returns an empty string or why the component stays unfitted.
+std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& options,
+                         const std::string& stage, FittedSurface* fitted, FitReport* fr) {
+  std::string reason = CheckComponent(dense, options.min_vertices);
+  if (!reason.empty()) return reason;
+  FitInput input;
+  input.points = dense.positions;  // first, so point_fits[i] is vertex i's
+  const std::vector<Vec3> extra = AreaSamples(dense);
+  input.points.insert(input.points.end(), extra.begin(), extra.end());
+  input.mesh = &dense;
+  FitOptions fo = options.fit;
+  fo.holdout = 0.0;
+  if (options.vertex_ratio > 0.0) {
+    fo.control_vertices =
+        std::max(options.min_control_vertices,
+                 static_cast<int>(std::lround(options.vertex_ratio * dense.num_vertices())));
+  }
+  // A small component gets the full split of its own (non-degenerate) triangles, no more.
+  fo.clamp_control_vertices = true;
+  if (options.progress) {
+    fo.progress = [&](const std::string& s) { options.progress(stage + ": " + s); };
+  }
+  const Status s = FitSurface(input, fo, fitted, fr);
+  return s.ok() ? std::string() : s.message();
+}
+
+/// The parameters of a component's vertices: the fitted one, or the closest point for the few
+/// the projection lost.
+std::vector<VertexBinding> VertexParameters(const DisplacedSurface& surf,
+                                            const std::vector<LocalPatch>& patches,
+                                            const std::vector<PointFit>& point_fits,
+                                            const PolygonMesh& dense) {
+  std::vector<Vec3> centres;
+  std::vector<VertexBinding> param(static_cast<std::size_t>(dense.num_vertices()));
+  for (std::size_t i = 0; i < param.size(); ++i) {
+    const PointFit& f = point_fits[i];
+    if (f.status != PointFitStatus::kOutside) {
+      param[i].face = f.face;
+      param[i].u = f.uv.x;
+      param[i].v = f.uv.y;
+      continue;
+    }
+    if (centres.empty()) {
+      for (Index f2 = 0; f2 < surf.domain->num_faces(); ++f2) {
+        SurfacePoint sp;
+        EvaluateSurface(*surf.domain, patches.data(), surf.displacement.get(), f2, Vec2(0.5), &sp);
+        centres.push_back(sp.position);
+      }
+    }
+    param[i] = ClosestBinding(surf, patches, centres, dense.positions[i]);
+  }
+  return param;
+}
+
+/// Skin weights of a part's control vertices from the dense mesh's nearest surface point.
+void TransferSkin(const AssetMesh& mesh, const WeldedMesh& w, const Components& components,
+                  std::size_t c, const ComponentMesh& cm, CharacterPart* part) {
+  TriangleDistanceTree tree;
+  std::vector<std::uint32_t> tris;
+  for (std::size_t t : components.triangles[c]) {
+    for (int k = 0; k < 3; ++k) {
+      tris.push_back(
+          static_cast<std::uint32_t>(cm.local[w.triangles[t + static_cast<std::size_t>(k)]]));
+    }
+  }
+  tree.Build(cm.dense.positions, tris);
+  std::vector<std::vector<Influence>> influences(cm.global.size());
+  for (std::size_t i = 0; i < cm.global.size(); ++i) {
+    const VertexRef& r = w.representative[static_cast<std::size_t>(cm.global[i])];
+    influences[i] =
+        VertexInfluences(mesh.primitives[r.primitive], static_cast<std::size_t>(r.vertex));
+  }
+  const DisplacedSurface& surf = part->surface;
+  const std::size_t nc = surf.rest_positions.size();
+  part->control_joints.resize(nc);
+  part->control_weights.resize(nc);
+  for (std::size_t v = 0; v < nc; ++v) {
+    const ClosestPoint cp = tree.Query(surf.rest_positions[v]);
+    const std::size_t t = static_cast<std::size_t>(cp.triangle) * 3;
+    BlendInfluences(influences[tris[t]], influences[tris[t + 1]], influences[tris[t + 2]],
+                    cp.barycentric, &part->control_joints[v], &part->control_weights[v]);
+  }
+}
+
+/// |D(z_b) - p|: the distance from p to the surface point of binding b.
+double Distance(const DisplacedSurface& surf, const std::vector<LocalPatch>& patches,
+                const VertexBinding& b, const Vec3& p) {
+  SurfacePoint sp;
+  EvaluateSurface(*surf.domain, patches.data(), surf.displacement.get(), b.face, Vec2(b.u, b.v),
+                  &sp);
+  return glm::length(sp.position - p);
+}
+
+/// The fit summary of a part, with the mean and largest distance of its welded vertices
+/// (model units) divided by the fit's scale.
+PartFitSummary Summary(const PolygonMesh& dense, const FitReport& fr, double mean, double max) {
+  PartFitSummary f;
+  f.points = dense.num_vertices();
+  f.triangles = dense.num_faces();
+  f.points_outside = fr.points_outside;
+  f.points_not_converged = fr.points_not_converged;
+  f.scale = fr.scale;
+  f.e1_mean = mean / fr.scale;
+  f.e1_max = max / fr.scale;
+  f.hausdorff = fr.error.hausdorff;
+  f.coefficients = fr.coefficients;
+  f.levels = fr.max_levels;
+  return f;
+}
+
+/// The skin of the first node that draws mesh m with one, or none.
+Index MeshSkin(const Asset& asset, std::size_t m) {
+  for (const AssetNode& node : asset.nodes) {
+    if (node.mesh == static_cast<Index>(m) && node.skin != kInvalidIndex) return node.skin;
+  }
+  return kInvalidIndex;
+}
+
 }  // namespace
 
 Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Character* out,
@@ -146,115 +364,25 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
       ch.bindings[m][p].resize(mesh.primitives[p].positions.size());
       rep.vertices += static_cast<std::int64_t>(mesh.primitives[p].positions.size());
     }
-    Index skin = kInvalidIndex;
-    for (const AssetNode& node : asset.nodes) {
-      if (node.mesh == static_cast<Index>(m) && node.skin != kInvalidIndex) {
-        skin = node.skin;
-        break;
-      }
-    }
-    // Weld by exact position over all primitives (glTF splits vertices at UV and normal seams).
-    std::map<std::array<std::uint32_t, 3>, Index> weld;
-    std::vector<Vec3> positions;
-    std::vector<VertexRef> representative;
-    std::vector<std::vector<Index>> welded(mesh.primitives.size());
-    std::vector<std::uint32_t> triangles;
-    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-      const AssetPrimitive& prim = mesh.primitives[p];
-      welded[p].assign(prim.positions.size(), kInvalidIndex);
-      const std::vector<std::uint32_t> tris = PrimitiveTriangles(prim);
-      for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
-        std::uint32_t w[3];
-        for (int k = 0; k < 3; ++k) {
-          const std::uint32_t v = tris[t + static_cast<std::size_t>(k)];
-          if (welded[p][v] == kInvalidIndex) {
-            auto ins =
-                weld.emplace(PositionKey(prim.positions[v]), static_cast<Index>(positions.size()));
-            if (ins.second) {
-              positions.push_back(Vec3(prim.positions[v]));
-              representative.push_back({static_cast<Index>(p), static_cast<Index>(v)});
-            }
-            welded[p][v] = ins.first->second;
-          }
-          w[k] = static_cast<std::uint32_t>(welded[p][v]);
-        }
-        if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) continue;
-        triangles.insert(triangles.end(), {w[0], w[1], w[2]});
-      }
-    }
-    if (triangles.empty()) continue;
-    // Connected components (union-find), numbered by their first triangle.
-    std::vector<Index> parent(positions.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    for (std::size_t t = 0; t < triangles.size(); t += 3) {
-      for (int k = 1; k < 3; ++k) {
-        const Index a = Find(&parent, static_cast<Index>(triangles[t])),
-                    b = Find(&parent,
-                             static_cast<Index>(triangles[t + static_cast<std::size_t>(k)]));
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-      }
-    }
-    std::map<Index, Index> component_of_root;
-    std::vector<Index> component(positions.size(), kInvalidIndex);
-    std::vector<std::vector<std::size_t>> component_tris;
-    for (std::size_t t = 0; t < triangles.size(); t += 3) {
-      const Index root = Find(&parent, static_cast<Index>(triangles[t]));
-      auto ins = component_of_root.emplace(root, static_cast<Index>(component_tris.size()));
-      if (ins.second) component_tris.emplace_back();
-      component_tris[static_cast<std::size_t>(ins.first->second)].push_back(t);
-    }
-    for (std::size_t v = 0; v < positions.size(); ++v) {
-      auto it = component_of_root.find(Find(&parent, static_cast<Index>(v)));
-      if (it != component_of_root.end()) component[v] = it->second;
-    }
-    rep.components += static_cast<std::int64_t>(component_tris.size());
-    for (std::size_t c = 0; c < component_tris.size(); ++c) {
-      // The component as a dense mesh with local vertex numbers (in welded order).
-      std::vector<Index> local(positions.size(), kInvalidIndex);
-      std::vector<Index> global;
-      for (std::size_t v = 0; v < positions.size(); ++v) {
-        if (component[v] == static_cast<Index>(c)) {
-          local[v] = static_cast<Index>(global.size());
-          global.push_back(static_cast<Index>(v));
-        }
-      }
-      PolygonMesh dense;
-      dense.source_name =
-          asset.source + ": mesh " + std::to_string(m) + " component " + std::to_string(c);
-      for (Index g : global) dense.positions.push_back(positions[g]);
-      for (std::size_t t : component_tris[c]) {
-        dense.AddFace({local[triangles[t]], local[triangles[t + 1]], local[triangles[t + 2]]});
-      }
+    const Index skin = MeshSkin(asset, m);
+    const WeldedMesh w = WeldMesh(mesh);
+    if (w.triangles.empty()) continue;
+    const Components components = SplitComponents(w);
+    rep.components += static_cast<std::int64_t>(components.triangles.size());
+    for (std::size_t c = 0; c < components.triangles.size(); ++c) {
+      const ComponentMesh cm = MakeComponentMesh(
+          w, components, c,
+          asset.source + ": mesh " + std::to_string(m) + " component " + std::to_string(c));
+      const PolygonMesh& dense = cm.dense;
       const std::string stage = "mesh " + std::to_string(m) + " component " + std::to_string(c);
       UnfittedPart unfitted;
       unfitted.mesh = static_cast<Index>(m);
       unfitted.component = static_cast<Index>(c);
       unfitted.vertices = dense.num_vertices();
       unfitted.triangles = dense.num_faces();
-      unfitted.reason = CheckComponent(dense, options.min_vertices);
       FittedSurface fitted;
       FitReport fr;
-      if (unfitted.reason.empty()) {
-        FitInput input;
-        input.points = dense.positions;  // first, so point_fits[i] is vertex i's
-        const std::vector<Vec3> extra = AreaSamples(dense);
-        input.points.insert(input.points.end(), extra.begin(), extra.end());
-        input.mesh = &dense;
-        FitOptions fo = options.fit;
-        fo.holdout = 0.0;
-        if (options.vertex_ratio > 0.0) {
-          fo.control_vertices =
-              std::max(options.min_control_vertices,
-                       static_cast<int>(std::lround(options.vertex_ratio * dense.num_vertices())));
-        }
-        // A small component gets the full split of its own (non-degenerate) triangles, no more.
-        fo.clamp_control_vertices = true;
-        if (options.progress) {
-          fo.progress = [&](const std::string& s) { options.progress(stage + ": " + s); };
-        }
-        Status s = FitSurface(input, fo, &fitted, &fr);
-        if (!s.ok()) unfitted.reason = s.message();
-      }
+      unfitted.reason = FitComponent(dense, options, stage, &fitted, &fr);
       if (!unfitted.reason.empty()) {
         ch.unfitted.push_back(unfitted);
         ++rep.parts_unfitted;
@@ -269,90 +397,28 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
       part.surface.displacement = std::move(fitted.displacement);
       const DisplacedSurface& surf = part.surface;
       const std::vector<LocalPatch>& patches = fitted.surface.patches;
-      // Parameters of every welded vertex: the fitted one, or the closest point for the few
-      // the projection lost.
-      std::vector<Vec3> centres;
-      std::vector<VertexBinding> param(global.size());
-      for (std::size_t i = 0; i < global.size(); ++i) {
-        const PointFit& f = fitted.point_fits[i];
-        if (f.status != PointFitStatus::kOutside) {
-          param[i].face = f.face;
-          param[i].u = f.uv.x;
-          param[i].v = f.uv.y;
-          continue;
-        }
-        if (centres.empty()) {
-          for (Index f2 = 0; f2 < surf.domain->num_faces(); ++f2) {
-            SurfacePoint sp;
-            EvaluateSurface(*surf.domain, patches.data(), surf.displacement.get(), f2, Vec2(0.5),
-                            &sp);
-            centres.push_back(sp.position);
-          }
-        }
-        param[i] = ClosestBinding(surf, patches, centres, dense.positions[i]);
-      }
+      std::vector<VertexBinding> param = VertexParameters(surf, patches, fitted.point_fits, dense);
       const Index part_index = static_cast<Index>(ch.parts.size());
       double part_sum = 0.0, part_max = 0.0;
-      for (std::size_t i = 0; i < global.size(); ++i) {
+      for (std::size_t i = 0; i < cm.global.size(); ++i) {
         param[i].part = part_index;
-        SurfacePoint sp;
-        EvaluateSurface(*surf.domain, patches.data(), surf.displacement.get(), param[i].face,
-                        Vec2(param[i].u, param[i].v), &sp);
-        const double e = glm::length(sp.position - dense.positions[i]);
+        const double e = Distance(surf, patches, param[i], dense.positions[i]);
         part_sum += e, part_max = std::max(part_max, e);
       }
       // Every original vertex of the component takes its welded vertex's parameter.
       for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-        for (std::size_t v = 0; v < welded[p].size(); ++v) {
-          const Index w = welded[p][v];
-          if (w == kInvalidIndex || component[w] != static_cast<Index>(c)) continue;
-          const VertexBinding& b = param[static_cast<std::size_t>(local[w])];
+        for (std::size_t v = 0; v < w.welded[p].size(); ++v) {
+          const Index wv = w.welded[p][v];
+          if (wv == kInvalidIndex || components.of_vertex[wv] != static_cast<Index>(c)) continue;
+          const VertexBinding& b = param[static_cast<std::size_t>(cm.local[wv])];
           ch.bindings[m][p][v] = b;
-          SurfacePoint sp;
-          EvaluateSurface(*surf.domain, patches.data(), surf.displacement.get(), b.face,
-                          Vec2(b.u, b.v), &sp);
-          const double e = glm::length(sp.position - Vec3(mesh.primitives[p].positions[v]));
+          const double e = Distance(surf, patches, b, Vec3(mesh.primitives[p].positions[v]));
           e1_sum += e, rep.e1_max = std::max(rep.e1_max, e);
           ++rep.vertices_bound;
         }
       }
-      // Skin weights of the control vertices from the dense mesh's nearest surface point.
-      if (skin != kInvalidIndex) {
-        TriangleDistanceTree tree;
-        std::vector<std::uint32_t> tris;
-        for (std::size_t t : component_tris[c]) {
-          for (int k = 0; k < 3; ++k) {
-            tris.push_back(
-                static_cast<std::uint32_t>(local[triangles[t + static_cast<std::size_t>(k)]]));
-          }
-        }
-        tree.Build(dense.positions, tris);
-        std::vector<std::vector<Influence>> influences(global.size());
-        for (std::size_t i = 0; i < global.size(); ++i) {
-          const VertexRef& r = representative[static_cast<std::size_t>(global[i])];
-          influences[i] =
-              VertexInfluences(mesh.primitives[r.primitive], static_cast<std::size_t>(r.vertex));
-        }
-        const std::size_t nc = surf.rest_positions.size();
-        part.control_joints.resize(nc);
-        part.control_weights.resize(nc);
-        for (std::size_t v = 0; v < nc; ++v) {
-          const ClosestPoint cp = tree.Query(surf.rest_positions[v]);
-          const std::size_t t = static_cast<std::size_t>(cp.triangle) * 3;
-          BlendInfluences(influences[tris[t]], influences[tris[t + 1]], influences[tris[t + 2]],
-                          cp.barycentric, &part.control_joints[v], &part.control_weights[v]);
-        }
-      }
-      part.fit.points = dense.num_vertices();
-      part.fit.triangles = dense.num_faces();
-      part.fit.points_outside = fr.points_outside;
-      part.fit.points_not_converged = fr.points_not_converged;
-      part.fit.scale = fr.scale;
-      part.fit.e1_mean = part_sum / static_cast<double>(global.size()) / fr.scale;
-      part.fit.e1_max = part_max / fr.scale;
-      part.fit.hausdorff = fr.error.hausdorff;
-      part.fit.coefficients = fr.coefficients;
-      part.fit.levels = fr.max_levels;
+      if (skin != kInvalidIndex) TransferSkin(mesh, w, components, c, cm, &part);
+      part.fit = Summary(dense, fr, part_sum / static_cast<double>(cm.global.size()), part_max);
       ch.parts.push_back(std::move(part));
       ++rep.parts_fitted;
     }

@@ -103,49 +103,42 @@ const Asset& CharacterPoser::asset() const { return state_->asset; }
 const std::vector<DrawnPrimitive>& CharacterPoser::drawn() const { return state_->drawn; }
 const CharacterPoseOptions& CharacterPoser::options() const { return state_->options; }
 
-Status CharacterPoser::Build(const Character& ch, const CharacterPoseOptions& options,
-                             CharacterPoser* out) {
-  auto st = std::make_unique<State>();
-  st->character = &ch;
-  st->options = options;
-  const std::string& source = ch.asset.source;
-  if (FindDeformer(options.deformer) == nullptr) {
-    return Status::InvalidInput(source + ": unknown deformer " +
-                                std::to_string(static_cast<unsigned>(options.deformer)));
-  }
+namespace {
+
+// The asset the poser draws (the bound asset, or the lod tessellation) and, per mesh,
+// primitive and vertex, where the vertex sits on which part (empty for primitives no part
+// draws).
+Status PosedAssetAndSources(const Character& ch, const CharacterPoseOptions& options, Asset* asset,
+                            character::SurfaceSources* sources) {
   CharacterExportOptions export_options;
   export_options.level = options.level;
   export_options.displacement_levels = options.displacement_levels;
-  Status s;
   if (options.mode == CharacterPoseMode::kBound) {
-    s = BuildBoundAsset(ch, export_options, &st->asset);
+    const Status s = BuildBoundAsset(ch, export_options, asset);
     if (!s.ok()) return s;
-    st->sources = ch.bindings;
-    for (auto& mesh : st->sources) {
+    *sources = ch.bindings;
+    for (auto& mesh : *sources) {
       for (auto& prim : mesh) {
         bool any = false;
         for (const VertexBinding& b : prim) any = any || b.part != kInvalidIndex;
         if (!any) prim.clear();
       }
     }
-  } else if (options.mode == CharacterPoseMode::kLod) {
-    s = character::BuildLodAssetWithSources(ch, export_options, &st->asset, nullptr, &st->sources);
-    if (!s.ok()) return s;
-  } else {
-    return Status::InvalidInput(source + ": unknown pose mode");
+    return Status::Ok();
   }
-  st->evals.resize(ch.parts.size());
-  for (std::size_t k = 0; k < ch.parts.size(); ++k) {
-    s = character::MakePartEval(ch, static_cast<Index>(k), options.displacement_levels,
-                                &st->evals[k]);
-    if (!s.ok()) return s;
+  if (options.mode == CharacterPoseMode::kLod) {
+    return character::BuildLodAssetWithSources(ch, export_options, asset, nullptr, sources);
   }
-  // Parts evaluated by each mesh's primitives.
-  const Asset& a = st->asset;
+  return Status::InvalidInput(ch.asset.source + ": unknown pose mode");
+}
+
+// The parts each mesh's primitives evaluate, in the order they first appear.
+std::vector<std::vector<Index>> PartsOfMeshes(const Character& ch, const Asset& a,
+                                              const character::SurfaceSources& sources) {
   std::vector<std::vector<Index>> parts_of_mesh(a.meshes.size());
-  for (std::size_t m = 0; m < a.meshes.size() && m < st->sources.size(); ++m) {
+  for (std::size_t m = 0; m < a.meshes.size() && m < sources.size(); ++m) {
     std::vector<bool> seen(ch.parts.size(), false);
-    for (const auto& prim : st->sources[m]) {
+    for (const auto& prim : sources[m]) {
       for (const VertexBinding& b : prim) {
         if (b.part < 0 || static_cast<std::size_t>(b.part) >= ch.parts.size()) continue;
         if (!seen[static_cast<std::size_t>(b.part)]) {
@@ -155,6 +148,63 @@ Status CharacterPoser::Build(const Character& ch, const CharacterPoseOptions& op
       }
     }
   }
+  return parts_of_mesh;
+}
+
+// The deformer of part k's control vertices by `rig` (skin `skin`), with the part's control
+// weights.
+Status MakePartInstance(const Character& ch, Index k, Index skin, const SkinRig& rig,
+                        DeformerKind kind, PartInstance* inst) {
+  const std::string& source = ch.asset.source;
+  const CharacterPart& part = ch.parts[static_cast<std::size_t>(k)];
+  const std::size_t n = part.surface.rest_positions.size();
+  if (part.control_joints.size() != n || part.control_weights.size() != n) {
+    return Status::InvalidInput(source + ": part " + std::to_string(k) +
+                                ": control weights do not match its control vertices");
+  }
+  std::vector<VertexWeights> influences(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    influences[v].joints = part.control_joints[v];
+    influences[v].weights = part.control_weights[v];
+  }
+  inst->skin = skin;
+  inst->part = k;
+  const Status s = MakeDeformer(kind, rig, part.surface.rest_positions.data(), nullptr,
+                                influences.data(), n, &inst->deformer);
+  if (s.code() == StatusCode::kUnsupported) {
+    return Status::Unsupported(source + ": the " + DeformerName(kind) +
+                               " deformer is not available (" + s.message() + ")");
+  }
+  if (!s.ok()) {
+    return s.WithContext(source + ": " + SkinPointer(skin) + ", part " + std::to_string(k) +
+                         " (mesh " + std::to_string(part.mesh) + ")");
+  }
+  inst->control.resize(n);
+  inst->patches.resize(n);
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status CharacterPoser::Build(const Character& ch, const CharacterPoseOptions& options,
+                             CharacterPoser* out) {
+  auto st = std::make_unique<State>();
+  st->character = &ch;
+  st->options = options;
+  if (FindDeformer(options.deformer) == nullptr) {
+    return Status::InvalidInput(ch.asset.source + ": unknown deformer " +
+                                std::to_string(static_cast<unsigned>(options.deformer)));
+  }
+  Status s = PosedAssetAndSources(ch, options, &st->asset, &st->sources);
+  if (!s.ok()) return s;
+  st->evals.resize(ch.parts.size());
+  for (std::size_t k = 0; k < ch.parts.size(); ++k) {
+    s = character::MakePartEval(ch, static_cast<Index>(k), options.displacement_levels,
+                                &st->evals[k]);
+    if (!s.ok()) return s;
+  }
+  const Asset& a = st->asset;
+  const std::vector<std::vector<Index>> parts_of_mesh = PartsOfMeshes(ch, a, st->sources);
   // Drawn primitives and one deformer per (skin, part).
   std::map<std::pair<Index, Index>, int> instance_index;
   std::map<Index, SkinRig> rigs;
@@ -176,31 +226,9 @@ Status CharacterPoser::Build(const Character& ch, const CharacterPoseOptions& op
           if (!s.ok()) return s;
           rig = rigs.emplace(skin, std::move(r)).first;
         }
-        const std::size_t n = part.surface.rest_positions.size();
-        if (part.control_joints.size() != n || part.control_weights.size() != n) {
-          return Status::InvalidInput(source + ": part " + std::to_string(k) +
-                                      ": control weights do not match its control vertices");
-        }
-        std::vector<VertexWeights> influences(n);
-        for (std::size_t v = 0; v < n; ++v) {
-          influences[v].joints = part.control_joints[v];
-          influences[v].weights = part.control_weights[v];
-        }
         PartInstance inst;
-        inst.skin = skin;
-        inst.part = k;
-        s = MakeDeformer(options.deformer, rig->second, part.surface.rest_positions.data(), nullptr,
-                         influences.data(), n, &inst.deformer);
-        if (s.code() == StatusCode::kUnsupported) {
-          return Status::Unsupported(source + ": the " + DeformerName(options.deformer) +
-                                     " deformer is not available (" + s.message() + ")");
-        }
-        if (!s.ok()) {
-          return s.WithContext(source + ": " + SkinPointer(skin) + ", part " + std::to_string(k) +
-                               " (mesh " + std::to_string(part.mesh) + ")");
-        }
-        inst.control.resize(n);
-        inst.patches.resize(n);
+        s = MakePartInstance(ch, k, skin, rig->second, options.deformer, &inst);
+        if (!s.ok()) return s;
         it = instance_index.emplace(key, static_cast<int>(st->instances.size())).first;
         st->instances.push_back(std::move(inst));
         if (std::find(st->skins_used.begin(), st->skins_used.end(), skin) == st->skins_used.end()) {
