@@ -268,10 +268,24 @@ class GltfImporter {
               std::size_t* size) const;
   Status Decode(int index, const std::string& from, Decoded* out) const;
   Status DecodeRaw(int index, const std::string& from, Decoded* out) const;
+  struct Layout;
+  Status ReadElement(const unsigned char* p, const Layout& layout, const std::string& pointer,
+                     std::size_t e, double* dst) const;
+  Status ApplySparse(const tinygltf::Accessor& acc, const Layout& layout, const std::string& ap,
+                     Decoded* out) const;
   Status DecodeTyped(int index, const std::string& from, std::initializer_list<int> types,
                      Decoded* out) const;
 
   Status ImportMeshes(Asset* asset) const;
+  Status DecodeAttribute(int accessor, const std::string& pointer, std::initializer_list<int> types,
+                         std::size_t n, Decoded* d) const;
+  Status ImportSkinAttributes(const std::string& pp, const std::map<int, int>& joint_sets,
+                              const std::map<int, int>& weight_sets, std::size_t n,
+                              AssetPrimitive* out) const;
+  Status ImportIndices(const std::string& pp, int indices, std::size_t n,
+                       AssetPrimitive* out) const;
+  Status ImportTargets(const std::string& pp, const tinygltf::Primitive& p, std::size_t n,
+                       AssetPrimitive* out) const;
   Status ImportPrimitive(const std::string& pp, const tinygltf::Primitive& p,
                          AssetPrimitive* out) const;
   Status ImportMaterials(Asset* asset) const;
@@ -490,29 +504,122 @@ Status GltfImporter::Decode(int index, const std::string& from, Decoded* out) co
   return s;
 }
 
+// How an accessor's elements lie in bytes.
+struct GltfImporter::Layout {
+  std::size_t rows = 0, cols = 0;  // VEC3: 3 x 1, MAT4: 4 x 4
+  std::size_t component_size = 0;
+  std::size_t column_stride = 0;  // matrix columns start on 4-byte boundaries
+  std::size_t element_size = 0;
+  int component_type = 0;
+  bool normalized = false;
+};
+
+// Reads element `e` at `p` into dst[0 .. rows * cols); float components must be finite.
+Status GltfImporter::ReadElement(const unsigned char* p, const Layout& layout,
+                                 const std::string& pointer, std::size_t e, double* dst) const {
+  const bool is_float = layout.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT;
+  for (std::size_t c = 0; c < layout.cols; ++c) {
+    for (std::size_t r = 0; r < layout.rows; ++r) {
+      const double v = ReadComponent(p + c * layout.column_stride + r * layout.component_size,
+                                     layout.component_type, layout.normalized);
+      if (is_float && !std::isfinite(v)) {
+        return Fail(pointer, "element " + Str(std::uint64_t{e}) + " component " +
+                                 Str(std::uint64_t{c * layout.rows + r}) + " is not finite");
+      }
+      dst[c * layout.rows + r] = v;
+    }
+  }
+  return Status::Ok();
+}
+
+// Sparse substitution: `sparse.count` indices (unsigned, below the accessor's count) and values
+// replace elements of the base.
+Status GltfImporter::ApplySparse(const tinygltf::Accessor& acc, const Layout& layout,
+                                 const std::string& ap, Decoded* out) const {
+  const std::string sp = ap + "/sparse";
+  const std::uint64_t count = acc.count;
+  const int n = acc.sparse.count;
+  if (n < 1 || static_cast<std::uint64_t>(n) > count) {
+    return Fail(sp + "/count", "sparse count " + Str(n) + " is not in [1, " + Str(count) + "]");
+  }
+  const std::size_t sn = static_cast<std::size_t>(n);
+  const int itype = acc.sparse.indices.componentType;
+  const std::size_t isize = itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                            : itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                            : itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
+                                                                              : 0;
+  if (isize == 0) {
+    return Fail(sp + "/indices/componentType",
+                "sparse indices componentType " + Str(itype) + " is not an unsigned integer");
+  }
+  const unsigned char* idata = nullptr;
+  std::size_t isz = 0;
+  Status s = View(acc.sparse.indices.bufferView, sp + "/indices/bufferView", &idata, &isz);
+  if (!s.ok()) return s;
+  const int ioff = acc.sparse.indices.byteOffset;
+  std::uint64_t iend = 0;
+  if (ioff < 0 || !CheckedMulAdd(sn, isize, static_cast<std::uint64_t>(ioff), &iend) ||
+      iend > isz) {
+    return Fail(sp + "/indices",
+                "byteOffset " + Str(ioff) + " + " + Str(n) + " indices exceed bufferView " +
+                    Str(acc.sparse.indices.bufferView) + " (" + Str(isz) + " bytes)");
+  }
+  const unsigned char* vdata = nullptr;
+  std::size_t vsz = 0;
+  s = View(acc.sparse.values.bufferView, sp + "/values/bufferView", &vdata, &vsz);
+  if (!s.ok()) return s;
+  const int voff = acc.sparse.values.byteOffset;
+  std::uint64_t vend = 0;
+  if (voff < 0 ||
+      !CheckedMulAdd(sn, layout.element_size, static_cast<std::uint64_t>(voff), &vend) ||
+      vend > vsz) {
+    return Fail(sp + "/values",
+                "byteOffset " + Str(voff) + " + " + Str(n) + " values exceed bufferView " +
+                    Str(acc.sparse.values.bufferView) + " (" + Str(vsz) + " bytes)");
+  }
+  for (std::size_t k = 0; k < sn; ++k) {
+    const std::uint64_t target = static_cast<std::uint64_t>(
+        ReadComponent(idata + static_cast<std::size_t>(ioff) + k * isize, itype, false));
+    if (target >= count) {
+      return Fail(sp + "/indices", "index " + Str(target) + " (entry " + Str(std::uint64_t{k}) +
+                                       ") >= accessor count " + Str(count));
+    }
+    s = ReadElement(vdata + static_cast<std::size_t>(voff) + k * layout.element_size, layout,
+                    ap + "/sparse/values", k,
+                    out->values.data() + static_cast<std::size_t>(target) * out->components);
+    if (!s.ok()) return s;
+  }
+  return Status::Ok();
+}
+
 Status GltfImporter::DecodeRaw(int index, const std::string& from, Decoded* out) const {
   if (index < 0 || static_cast<std::size_t>(index) >= model_.accessors.size()) {
     return Fail(from, "accessor " + Str(index) + " does not exist");
   }
   const std::string ap = Ptr("accessors", static_cast<std::size_t>(index));
   const tinygltf::Accessor& acc = model_.accessors[static_cast<std::size_t>(index)];
-  const std::size_t csize = ComponentSize(acc.componentType);
-  if (csize == 0) {
+  Layout layout;
+  layout.component_type = acc.componentType;
+  layout.normalized = acc.normalized;
+  layout.component_size = ComponentSize(acc.componentType);
+  if (layout.component_size == 0) {
     return Fail(ap + "/componentType",
                 "componentType " + Str(acc.componentType) + " is not allowed in glTF 2.0");
   }
-  std::size_t rows = 0, cols = 0;
-  if (!TypeShape(acc.type, &rows, &cols)) return Fail(ap + "/type", "unknown accessor type");
+  if (!TypeShape(acc.type, &layout.rows, &layout.cols)) {
+    return Fail(ap + "/type", "unknown accessor type");
+  }
   if (acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
                          acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
     return Fail(ap + "/normalized",
                 "normalized is not allowed for componentType " + Str(acc.componentType));
   }
   // Matrix columns start on 4-byte boundaries (glTF 2.0, 3.6.2.4).
-  std::size_t column_stride = rows * csize;
-  if (cols > 1) column_stride = (column_stride + 3) / 4 * 4;
-  const std::size_t element_size = column_stride * cols;
-  const std::size_t components = rows * cols;
+  layout.column_stride = layout.rows * layout.component_size;
+  if (layout.cols > 1) layout.column_stride = (layout.column_stride + 3) / 4 * 4;
+  layout.element_size = layout.column_stride * layout.cols;
+  const std::size_t element_size = layout.element_size;
+  const std::size_t components = layout.rows * layout.cols;
   const std::uint64_t count = acc.count;
   std::uint64_t total = 0;
   if (!CheckedMulAdd(count, components, 0, &total)) {
@@ -548,85 +655,14 @@ Status GltfImporter::DecodeRaw(int index, const std::string& from, Decoded* out)
   out->type = acc.type;
   out->component_type = acc.componentType;
   out->values.assign(static_cast<std::size_t>(total), 0.0);
-
-  const bool is_float = acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
-  // Reads element `e` at `p` into out->values[slot * components ...].
-  auto read_element = [&](const unsigned char* p, std::size_t slot, const char* where,
-                          std::size_t e) -> Status {
-    double* dst = out->values.data() + slot * components;
-    for (std::size_t c = 0; c < cols; ++c) {
-      for (std::size_t r = 0; r < rows; ++r) {
-        const double v =
-            ReadComponent(p + c * column_stride + r * csize, acc.componentType, acc.normalized);
-        if (is_float && !std::isfinite(v)) {
-          return Fail(ap + where, "element " + Str(std::uint64_t{e}) + " component " +
-                                      Str(std::uint64_t{c * rows + r}) + " is not finite");
-        }
-        dst[c * rows + r] = v;
-      }
-    }
-    return Status::Ok();
-  };
   if (data != nullptr) {
     for (std::size_t e = 0; e < out->count; ++e) {
-      Status s = read_element(data + acc.byteOffset + e * stride, e, "", e);
+      Status s = ReadElement(data + acc.byteOffset + e * stride, layout, ap, e,
+                             out->values.data() + e * components);
       if (!s.ok()) return s;
     }
   }
-
-  if (acc.sparse.isSparse) {
-    const std::string sp = ap + "/sparse";
-    const int n = acc.sparse.count;
-    if (n < 1 || static_cast<std::uint64_t>(n) > count) {
-      return Fail(sp + "/count", "sparse count " + Str(n) + " is not in [1, " + Str(count) + "]");
-    }
-    const std::size_t sn = static_cast<std::size_t>(n);
-    const int itype = acc.sparse.indices.componentType;
-    const std::size_t isize = itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
-                              : itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
-                              : itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
-                                                                                : 0;
-    if (isize == 0) {
-      return Fail(sp + "/indices/componentType",
-                  "sparse indices componentType " + Str(itype) + " is not an unsigned integer");
-    }
-    const unsigned char* idata = nullptr;
-    std::size_t isz = 0;
-    Status s = View(acc.sparse.indices.bufferView, sp + "/indices/bufferView", &idata, &isz);
-    if (!s.ok()) return s;
-    const int ioff = acc.sparse.indices.byteOffset;
-    std::uint64_t iend = 0;
-    if (ioff < 0 || !CheckedMulAdd(sn, isize, static_cast<std::uint64_t>(ioff), &iend) ||
-        iend > isz) {
-      return Fail(sp + "/indices",
-                  "byteOffset " + Str(ioff) + " + " + Str(n) + " indices exceed bufferView " +
-                      Str(acc.sparse.indices.bufferView) + " (" + Str(isz) + " bytes)");
-    }
-    const unsigned char* vdata = nullptr;
-    std::size_t vsz = 0;
-    s = View(acc.sparse.values.bufferView, sp + "/values/bufferView", &vdata, &vsz);
-    if (!s.ok()) return s;
-    const int voff = acc.sparse.values.byteOffset;
-    std::uint64_t vend = 0;
-    if (voff < 0 || !CheckedMulAdd(sn, element_size, static_cast<std::uint64_t>(voff), &vend) ||
-        vend > vsz) {
-      return Fail(sp + "/values",
-                  "byteOffset " + Str(voff) + " + " + Str(n) + " values exceed bufferView " +
-                      Str(acc.sparse.values.bufferView) + " (" + Str(vsz) + " bytes)");
-    }
-    for (std::size_t k = 0; k < sn; ++k) {
-      const std::uint64_t target = static_cast<std::uint64_t>(
-          ReadComponent(idata + static_cast<std::size_t>(ioff) + k * isize, itype, false));
-      if (target >= count) {
-        return Fail(sp + "/indices", "index " + Str(target) + " (entry " + Str(std::uint64_t{k}) +
-                                         ") >= accessor count " + Str(count));
-      }
-      s = read_element(vdata + static_cast<std::size_t>(voff) + k * element_size,
-                       static_cast<std::size_t>(target), "/sparse/values", k);
-      if (!s.ok()) return s;
-    }
-  }
-  return Status::Ok();
+  return acc.sparse.isSparse ? ApplySparse(acc, layout, ap, out) : Status::Ok();
 }
 
 Status GltfImporter::DecodeTyped(int index, const std::string& from,
@@ -655,6 +691,121 @@ std::vector<V> ToVectors(const Decoded& d) {
   return out;
 }
 
+// Decodes an attribute accessor of one of `types` that must have `n` elements (POSITION's).
+Status GltfImporter::DecodeAttribute(int accessor, const std::string& pointer,
+                                     std::initializer_list<int> types, std::size_t n,
+                                     Decoded* d) const {
+  Status st = DecodeTyped(accessor, pointer, types, d);
+  if (!st.ok()) return st;
+  if (d->count != n) {
+    return Fail(pointer, "accessor " + Str(accessor) + " has " + Str(std::uint64_t{d->count}) +
+                             " elements, POSITION has " + Str(std::uint64_t{n}));
+  }
+  return Status::Ok();
+}
+
+// JOINTS_n (integers in [0, 65535]) and WEIGHTS_n (non-negative), the weights of each vertex
+// renormalised over all sets; all-zero rows stay zero.
+Status GltfImporter::ImportSkinAttributes(const std::string& pp,
+                                          const std::map<int, int>& joint_sets,
+                                          const std::map<int, int>& weight_sets, std::size_t n,
+                                          AssetPrimitive* out) const {
+  const std::string atp = pp + "/attributes/";
+  if (joint_sets.size() != weight_sets.size()) {
+    return Fail(pp + "/attributes", Str(std::uint64_t{joint_sets.size()}) + " JOINTS_n sets but " +
+                                        Str(std::uint64_t{weight_sets.size()}) + " WEIGHTS_n sets");
+  }
+  Decoded d;
+  for (const auto& [k, accessor] : joint_sets) {
+    const std::string jp = atp + "JOINTS_" + Str(k);
+    Status s = DecodeAttribute(accessor, jp, {TINYGLTF_TYPE_VEC4}, n, &d);
+    if (!s.ok()) return s;
+    std::vector<glm::u16vec4> joints(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t c = 0; c < 4; ++c) {
+        const double v = d.values[i * 4 + c];
+        if (!(v >= 0.0 && v <= 65535.0 && v == std::floor(v))) {
+          return Fail(jp, "vertex " + Str(std::uint64_t{i}) + " has joint index " + Num(v) +
+                              ", not an integer in [0, 65535]");
+        }
+        joints[i][static_cast<glm::length_t>(c)] = static_cast<std::uint16_t>(v);
+      }
+    }
+    out->joints.push_back(std::move(joints));
+  }
+  std::vector<std::vector<double>> raw_weights;
+  for (const auto& [k, accessor] : weight_sets) {
+    const std::string wp = atp + "WEIGHTS_" + Str(k);
+    Status s = DecodeAttribute(accessor, wp, {TINYGLTF_TYPE_VEC4}, n, &d);
+    if (!s.ok()) return s;
+    for (std::size_t i = 0; i < d.values.size(); ++i) {
+      if (d.values[i] < 0.0) {
+        return Fail(wp, "vertex " + Str(std::uint64_t{i / 4}) + " has a negative weight");
+      }
+    }
+    raw_weights.push_back(d.values);
+  }
+  out->weights.assign(raw_weights.size(), std::vector<glm::vec4>(n, glm::vec4(0.0f)));
+  for (std::size_t i = 0; i < n && !raw_weights.empty(); ++i) {
+    double sum = 0.0;
+    for (const auto& w : raw_weights) sum += w[i * 4] + w[i * 4 + 1] + w[i * 4 + 2] + w[i * 4 + 3];
+    const double scale = sum > 0.0 ? 1.0 / sum : 0.0;
+    for (std::size_t set = 0; set < raw_weights.size(); ++set) {
+      for (std::size_t c = 0; c < 4; ++c) {
+        out->weights[set][i][static_cast<glm::length_t>(c)] =
+            static_cast<float>(raw_weights[set][i * 4 + c] * scale);
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+// The index accessor: unsigned integers below the vertex count `n`.
+Status GltfImporter::ImportIndices(const std::string& pp, int indices, std::size_t n,
+                                   AssetPrimitive* out) const {
+  const std::string ip = pp + "/indices";
+  Decoded d;
+  Status s = DecodeTyped(indices, ip, {TINYGLTF_TYPE_SCALAR}, &d);
+  if (!s.ok()) return s;
+  if (d.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+      d.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      d.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+    return Fail(ip, "accessor " + Str(indices) + " has componentType " + Str(d.component_type) +
+                        ", indices must be unsigned integers");
+  }
+  out->indices.resize(d.count);
+  for (std::size_t i = 0; i < d.count; ++i) {
+    const double v = d.values[i];  // an unsigned integer from the decoder
+    if (v >= static_cast<double>(n)) {
+      return Fail(ip, "index " + Str(static_cast<std::uint64_t>(v)) + " at position " +
+                          Str(std::uint64_t{i}) + " >= vertex count " + Str(std::uint64_t{n}));
+    }
+    out->indices[i] = static_cast<std::uint32_t>(v);
+  }
+  return Status::Ok();
+}
+
+// Morph targets: POSITION, NORMAL and TANGENT deltas (other attributes are ignored).
+Status GltfImporter::ImportTargets(const std::string& pp, const tinygltf::Primitive& p,
+                                   std::size_t n, AssetPrimitive* out) const {
+  Decoded d;
+  for (std::size_t t = 0; t < p.targets.size(); ++t) {
+    AssetMorphTarget target;
+    const std::string tp = pp + "/targets/" + Str(std::uint64_t{t}) + "/";
+    for (const auto& [name, accessor] : p.targets[t]) {
+      if (name != "POSITION" && name != "NORMAL" && name != "TANGENT") continue;
+      Status s = DecodeAttribute(accessor, tp + name, {TINYGLTF_TYPE_VEC3}, n, &d);
+      if (!s.ok()) return s;
+      std::vector<glm::vec3> deltas = ToVectors<glm::vec3>(d);
+      if (name == "POSITION") target.positions = std::move(deltas);
+      if (name == "NORMAL") target.normals = std::move(deltas);
+      if (name == "TANGENT") target.tangents = std::move(deltas);
+    }
+    out->targets.push_back(std::move(target));
+  }
+  return Status::Ok();
+}
+
 Status GltfImporter::ImportPrimitive(const std::string& pp, const tinygltf::Primitive& p,
                                      AssetPrimitive* out) const {
   const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
@@ -672,26 +823,15 @@ Status GltfImporter::ImportPrimitive(const std::string& pp, const tinygltf::Prim
   const std::size_t n = d.count;
   out->positions = ToVectors<glm::vec3>(d);
 
-  auto decode_attr = [&](int accessor, const std::string& pointer,
-                         std::initializer_list<int> types) -> Status {
-    Status st = DecodeTyped(accessor, pointer, types, &d);
-    if (!st.ok()) return st;
-    if (d.count != n) {
-      return Fail(pointer, "accessor " + Str(accessor) + " has " + Str(std::uint64_t{d.count}) +
-                               " elements, POSITION has " + Str(std::uint64_t{n}));
-    }
-    return Status::Ok();
-  };
-
   // Attribute sets (TEXCOORD_n, ...) by set number; they must be numbered 0, 1, 2, ...
   std::map<std::string, std::map<int, int>> sets;
   for (const auto& [name, accessor] : p.attributes) {
     if (name == "NORMAL") {
-      s = decode_attr(accessor, atp + name, {TINYGLTF_TYPE_VEC3});
+      s = DecodeAttribute(accessor, atp + name, {TINYGLTF_TYPE_VEC3}, n, &d);
       if (!s.ok()) return s;
       out->normals = ToVectors<glm::vec3>(d);
     } else if (name == "TANGENT") {
-      s = decode_attr(accessor, atp + name, {TINYGLTF_TYPE_VEC4});
+      s = DecodeAttribute(accessor, atp + name, {TINYGLTF_TYPE_VEC4}, n, &d);
       if (!s.ok()) return s;
       out->tangents = ToVectors<glm::vec4>(d);
     } else {
@@ -712,12 +852,13 @@ Status GltfImporter::ImportPrimitive(const std::string& pp, const tinygltf::Prim
     }
   }
   for (const auto& [k, accessor] : sets["TEXCOORD_"]) {
-    s = decode_attr(accessor, atp + "TEXCOORD_" + Str(k), {TINYGLTF_TYPE_VEC2});
+    s = DecodeAttribute(accessor, atp + "TEXCOORD_" + Str(k), {TINYGLTF_TYPE_VEC2}, n, &d);
     if (!s.ok()) return s;
     out->texcoords.push_back(ToVectors<glm::vec2>(d));
   }
   for (const auto& [k, accessor] : sets["COLOR_"]) {
-    s = decode_attr(accessor, atp + "COLOR_" + Str(k), {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4});
+    s = DecodeAttribute(accessor, atp + "COLOR_" + Str(k), {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
+                        n, &d);
     if (!s.ok()) return s;
     std::vector<glm::vec4> colors(n, glm::vec4(1.0f));
     for (std::size_t i = 0; i < n; ++i) {
@@ -728,91 +869,13 @@ Status GltfImporter::ImportPrimitive(const std::string& pp, const tinygltf::Prim
     }
     out->colors.push_back(std::move(colors));
   }
-  const std::map<int, int>& joint_sets = sets["JOINTS_"];
-  const std::map<int, int>& weight_sets = sets["WEIGHTS_"];
-  if (joint_sets.size() != weight_sets.size()) {
-    return Fail(pp + "/attributes", Str(std::uint64_t{joint_sets.size()}) + " JOINTS_n sets but " +
-                                        Str(std::uint64_t{weight_sets.size()}) + " WEIGHTS_n sets");
-  }
-  for (const auto& [k, accessor] : joint_sets) {
-    const std::string jp = atp + "JOINTS_" + Str(k);
-    s = decode_attr(accessor, jp, {TINYGLTF_TYPE_VEC4});
-    if (!s.ok()) return s;
-    std::vector<glm::u16vec4> joints(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t c = 0; c < 4; ++c) {
-        const double v = d.values[i * 4 + c];
-        if (!(v >= 0.0 && v <= 65535.0 && v == std::floor(v))) {
-          return Fail(jp, "vertex " + Str(std::uint64_t{i}) + " has joint index " + Num(v) +
-                              ", not an integer in [0, 65535]");
-        }
-        joints[i][static_cast<glm::length_t>(c)] = static_cast<std::uint16_t>(v);
-      }
-    }
-    out->joints.push_back(std::move(joints));
-  }
-  std::vector<std::vector<double>> raw_weights;
-  for (const auto& [k, accessor] : weight_sets) {
-    const std::string wp = atp + "WEIGHTS_" + Str(k);
-    s = decode_attr(accessor, wp, {TINYGLTF_TYPE_VEC4});
-    if (!s.ok()) return s;
-    for (std::size_t i = 0; i < d.values.size(); ++i) {
-      if (d.values[i] < 0.0) {
-        return Fail(wp, "vertex " + Str(std::uint64_t{i / 4}) + " has a negative weight");
-      }
-    }
-    raw_weights.push_back(d.values);
-  }
-  // Renormalise each vertex over all sets; all-zero rows stay zero.
-  out->weights.assign(raw_weights.size(), std::vector<glm::vec4>(n, glm::vec4(0.0f)));
-  for (std::size_t i = 0; i < n && !raw_weights.empty(); ++i) {
-    double sum = 0.0;
-    for (const auto& w : raw_weights) sum += w[i * 4] + w[i * 4 + 1] + w[i * 4 + 2] + w[i * 4 + 3];
-    const double scale = sum > 0.0 ? 1.0 / sum : 0.0;
-    for (std::size_t set = 0; set < raw_weights.size(); ++set) {
-      for (std::size_t c = 0; c < 4; ++c) {
-        out->weights[set][i][static_cast<glm::length_t>(c)] =
-            static_cast<float>(raw_weights[set][i * 4 + c] * scale);
-      }
-    }
-  }
-
+  s = ImportSkinAttributes(pp, sets["JOINTS_"], sets["WEIGHTS_"], n, out);
+  if (!s.ok()) return s;
   if (p.indices >= 0) {
-    const std::string ip = pp + "/indices";
-    s = DecodeTyped(p.indices, ip, {TINYGLTF_TYPE_SCALAR}, &d);
+    s = ImportIndices(pp, p.indices, n, out);
     if (!s.ok()) return s;
-    if (d.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-        d.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        d.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-      return Fail(ip, "accessor " + Str(p.indices) + " has componentType " + Str(d.component_type) +
-                          ", indices must be unsigned integers");
-    }
-    out->indices.resize(d.count);
-    for (std::size_t i = 0; i < d.count; ++i) {
-      const double v = d.values[i];  // an unsigned integer from the decoder
-      if (v >= static_cast<double>(n)) {
-        return Fail(ip, "index " + Str(static_cast<std::uint64_t>(v)) + " at position " +
-                            Str(std::uint64_t{i}) + " >= vertex count " + Str(std::uint64_t{n}));
-      }
-      out->indices[i] = static_cast<std::uint32_t>(v);
-    }
   }
-
-  for (std::size_t t = 0; t < p.targets.size(); ++t) {
-    AssetMorphTarget target;
-    const std::string tp = pp + "/targets/" + Str(std::uint64_t{t}) + "/";
-    for (const auto& [name, accessor] : p.targets[t]) {
-      if (name != "POSITION" && name != "NORMAL" && name != "TANGENT") continue;
-      s = decode_attr(accessor, tp + name, {TINYGLTF_TYPE_VEC3});
-      if (!s.ok()) return s;
-      std::vector<glm::vec3> deltas = ToVectors<glm::vec3>(d);
-      if (name == "POSITION") target.positions = std::move(deltas);
-      if (name == "NORMAL") target.normals = std::move(deltas);
-      if (name == "TANGENT") target.tangents = std::move(deltas);
-    }
-    out->targets.push_back(std::move(target));
-  }
-  return Status::Ok();
+  return ImportTargets(pp, p, n, out);
 }
 
 Status GltfImporter::ImportMeshes(Asset* asset) const {

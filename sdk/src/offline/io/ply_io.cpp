@@ -128,10 +128,141 @@ std::string Quote(std::string_view s) { return "'" + std::string(s) + "'"; }
 
 constexpr std::uint64_t kMaxIndex = static_cast<std::uint64_t>(std::numeric_limits<Index>::max());
 
+Status LineError(const std::string& name, int line, const std::string& what) {
+  return Status::InvalidInput(name + ":" + std::to_string(line) + ": " + what);
+}
+
+// `format TYPE 1.0`.
+Status ParseFormatLine(const std::vector<std::string_view>& tokens, const std::string& name,
+                       int line_no, Header* header) {
+  if (tokens.size() != 3) return LineError(name, line_no, "expected 'format TYPE 1.0'");
+  if (tokens[1] == "ascii") {
+    header->format = Format::kAscii;
+  } else if (tokens[1] == "binary_little_endian") {
+    header->format = Format::kBinaryLittleEndian;
+  } else if (tokens[1] == "binary_big_endian") {
+    header->format = Format::kBinaryBigEndian;
+  } else {
+    return LineError(name, line_no,
+                     "unknown format " + Quote(tokens[1]) +
+                         " (expected ascii, binary_little_endian or binary_big_endian)");
+  }
+  double version = 0.0;
+  if (!ParseDouble(tokens[2], &version) || version != 1.0) {
+    return LineError(name, line_no, "unsupported PLY version " + Quote(tokens[2]) + " (only 1.0)");
+  }
+  return Status::Ok();
+}
+
+// `element NAME COUNT`.
+Status ParseElementLine(const std::vector<std::string_view>& tokens, const std::string& name,
+                        int line_no, Header* header) {
+  if (tokens.size() != 3) return LineError(name, line_no, "expected 'element NAME COUNT'");
+  Element element;
+  element.name = std::string(tokens[1]);
+  element.line = line_no;
+  if (!ParseCount(tokens[2], &element.count)) {
+    return LineError(name, line_no, Quote(tokens[2]) + " is not a valid element count");
+  }
+  for (const Element& other : header->elements) {
+    if (other.name == element.name) {
+      return LineError(name, line_no, "element " + Quote(element.name) + " is declared twice");
+    }
+  }
+  header->elements.push_back(std::move(element));
+  return Status::Ok();
+}
+
+// `property TYPE NAME` or `property list COUNT_TYPE ITEM_TYPE NAME`, of the last element.
+Status ParsePropertyLine(const std::vector<std::string_view>& tokens, const std::string& name,
+                         int line_no, Header* header) {
+  auto error = [&](const std::string& what) { return LineError(name, line_no, what); };
+  if (header->elements.empty()) return error("a property before any element");
+  Property property;
+  if (tokens.size() >= 2 && tokens[1] == "list") {
+    if (tokens.size() != 5) return error("expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
+    property.is_list = true;
+    if (!ParseType(tokens[2], &property.count_type)) {
+      return error("unknown property type " + Quote(tokens[2]));
+    }
+    if (!ParseType(tokens[3], &property.type)) {
+      return error("unknown property type " + Quote(tokens[3]));
+    }
+    if (IsFloatType(property.count_type)) {
+      return error("the list count type " + Quote(tokens[2]) + " is not an integer");
+    }
+    property.name = std::string(tokens[4]);
+  } else {
+    if (tokens.size() != 3) return error("expected 'property TYPE NAME'");
+    if (!ParseType(tokens[1], &property.type)) {
+      return error("unknown property type " + Quote(tokens[1]));
+    }
+    property.name = std::string(tokens[2]);
+  }
+  Element& element = header->elements.back();
+  for (const Property& other : element.properties) {
+    if (other.name == property.name) {
+      return error("property " + Quote(property.name) + " of element " + Quote(element.name) +
+                   " is declared twice");
+    }
+  }
+  element.properties.push_back(std::move(property));
+  return Status::Ok();
+}
+
+// The vertex element must have scalar x, y and z; a face element an integer index list.
+Status CheckVertexAndFaceElements(const std::string& name, Header* header) {
+  for (size_t e = 0; e < header->elements.size(); ++e) {
+    const Element& element = header->elements[e];
+    auto error = [&](const std::string& what) { return LineError(name, element.line, what); };
+    if (element.name == "vertex") {
+      header->vertex_element = static_cast<int>(e);
+      if (element.count > kMaxIndex) {
+        return error("vertex count " + std::to_string(element.count) + " is too large");
+      }
+      static constexpr const char* kAxes[3] = {"x", "y", "z"};
+      for (int axis = 0; axis < 3; ++axis) {
+        for (size_t p = 0; p < element.properties.size(); ++p) {
+          if (element.properties[p].name == kAxes[axis]) {
+            header->axis_property[axis] = static_cast<int>(p);
+          }
+        }
+        const int p = header->axis_property[axis];
+        if (p < 0) {
+          return error(std::string("the vertex element has no '") + kAxes[axis] + "' property");
+        }
+        if (element.properties[static_cast<size_t>(p)].is_list) {
+          return error(std::string("vertex property '") + kAxes[axis] + "' is a list");
+        }
+      }
+    } else if (element.name == "face") {
+      header->face_element = static_cast<int>(e);
+      if (element.count >= kMaxIndex) {
+        return error("face count " + std::to_string(element.count) + " is too large");
+      }
+      for (size_t p = 0; p < element.properties.size(); ++p) {
+        const Property& property = element.properties[p];
+        if (property.name == "vertex_indices" || property.name == "vertex_index") {
+          if (!property.is_list) {
+            return error("face property " + Quote(property.name) + " is not a list");
+          }
+          if (IsFloatType(property.type)) {
+            return error("face property " + Quote(property.name) + " has non-integer indices");
+          }
+          header->face_list_property = static_cast<int>(p);
+          break;
+        }
+      }
+      if (header->face_list_property < 0) {
+        return error("the face element has no 'vertex_indices' list property");
+      }
+    }
+  }
+  if (header->vertex_element < 0) return Status::InvalidInput(name + ": no vertex element");
+  return Status::Ok();
+}
+
 Status ParseHeader(std::string_view bytes, const std::string& name, Header* header) {
-  auto error = [&](int line, const std::string& what) {
-    return Status::InvalidInput(name + ":" + std::to_string(line) + ": " + what);
-  };
   size_t pos = 0;
   if (TrimRight(NextLine(bytes, &pos)) != "ply") {
     return Status::InvalidInput(name + ": missing 'ply' magic on the first line (not a PLY file)");
@@ -164,129 +295,24 @@ Status ParseHeader(std::string_view bytes, const std::string& name, Header* head
     if (line_no < std::numeric_limits<int>::max()) ++line_no;
     if (tokens.empty()) continue;
     const std::string_view key = tokens[0];
+    Status s;
     if (key == "comment" || key == "obj_info") continue;
     if (key == "format") {
-      if (tokens.size() != 3) return error(line_no, "expected 'format TYPE 1.0'");
-      if (have_format) return error(line_no, "a second format line");
+      if (have_format && tokens.size() == 3)
+        return LineError(name, line_no, "a second format line");
       have_format = true;
-      if (tokens[1] == "ascii") {
-        header->format = Format::kAscii;
-      } else if (tokens[1] == "binary_little_endian") {
-        header->format = Format::kBinaryLittleEndian;
-      } else if (tokens[1] == "binary_big_endian") {
-        header->format = Format::kBinaryBigEndian;
-      } else {
-        return error(line_no, "unknown format " + Quote(tokens[1]) +
-                                  " (expected ascii, binary_little_endian or binary_big_endian)");
-      }
-      double version = 0.0;
-      if (!ParseDouble(tokens[2], &version) || version != 1.0) {
-        return error(line_no, "unsupported PLY version " + Quote(tokens[2]) + " (only 1.0)");
-      }
+      s = ParseFormatLine(tokens, name, line_no, header);
     } else if (key == "element") {
-      if (tokens.size() != 3) return error(line_no, "expected 'element NAME COUNT'");
-      Element element;
-      element.name = std::string(tokens[1]);
-      element.line = line_no;
-      if (!ParseCount(tokens[2], &element.count)) {
-        return error(line_no, Quote(tokens[2]) + " is not a valid element count");
-      }
-      for (const Element& other : header->elements) {
-        if (other.name == element.name) {
-          return error(line_no, "element " + Quote(element.name) + " is declared twice");
-        }
-      }
-      header->elements.push_back(std::move(element));
+      s = ParseElementLine(tokens, name, line_no, header);
     } else if (key == "property") {
-      if (header->elements.empty()) return error(line_no, "a property before any element");
-      Property property;
-      if (tokens.size() >= 2 && tokens[1] == "list") {
-        if (tokens.size() != 5) {
-          return error(line_no, "expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
-        }
-        property.is_list = true;
-        if (!ParseType(tokens[2], &property.count_type)) {
-          return error(line_no, "unknown property type " + Quote(tokens[2]));
-        }
-        if (!ParseType(tokens[3], &property.type)) {
-          return error(line_no, "unknown property type " + Quote(tokens[3]));
-        }
-        if (IsFloatType(property.count_type)) {
-          return error(line_no, "the list count type " + Quote(tokens[2]) + " is not an integer");
-        }
-        property.name = std::string(tokens[4]);
-      } else {
-        if (tokens.size() != 3) return error(line_no, "expected 'property TYPE NAME'");
-        if (!ParseType(tokens[1], &property.type)) {
-          return error(line_no, "unknown property type " + Quote(tokens[1]));
-        }
-        property.name = std::string(tokens[2]);
-      }
-      Element& element = header->elements.back();
-      for (const Property& other : element.properties) {
-        if (other.name == property.name) {
-          return error(line_no, "property " + Quote(property.name) + " of element " +
-                                    Quote(element.name) + " is declared twice");
-        }
-      }
-      element.properties.push_back(std::move(property));
+      s = ParsePropertyLine(tokens, name, line_no, header);
     } else {
-      return error(line_no, "unknown header line " + Quote(key));
+      s = LineError(name, line_no, "unknown header line " + Quote(key));
     }
+    if (!s.ok()) return s;
   }
   if (!have_format) return Status::InvalidInput(name + ": missing format line");
-
-  for (size_t e = 0; e < header->elements.size(); ++e) {
-    const Element& element = header->elements[e];
-    if (element.name == "vertex") {
-      header->vertex_element = static_cast<int>(e);
-      if (element.count > kMaxIndex) {
-        return error(element.line,
-                     "vertex count " + std::to_string(element.count) + " is too large");
-      }
-      static constexpr const char* kAxes[3] = {"x", "y", "z"};
-      for (int axis = 0; axis < 3; ++axis) {
-        for (size_t p = 0; p < element.properties.size(); ++p) {
-          if (element.properties[p].name == kAxes[axis]) {
-            header->axis_property[axis] = static_cast<int>(p);
-          }
-        }
-        const int p = header->axis_property[axis];
-        if (p < 0) {
-          return error(element.line,
-                       std::string("the vertex element has no '") + kAxes[axis] + "' property");
-        }
-        if (element.properties[static_cast<size_t>(p)].is_list) {
-          return error(element.line,
-                       std::string("vertex property '") + kAxes[axis] + "' is a list");
-        }
-      }
-    } else if (element.name == "face") {
-      header->face_element = static_cast<int>(e);
-      if (element.count >= kMaxIndex) {
-        return error(element.line, "face count " + std::to_string(element.count) + " is too large");
-      }
-      for (size_t p = 0; p < element.properties.size(); ++p) {
-        const Property& property = element.properties[p];
-        if (property.name == "vertex_indices" || property.name == "vertex_index") {
-          if (!property.is_list) {
-            return error(element.line, "face property " + Quote(property.name) + " is not a list");
-          }
-          if (IsFloatType(property.type)) {
-            return error(element.line,
-                         "face property " + Quote(property.name) + " has non-integer indices");
-          }
-          header->face_list_property = static_cast<int>(p);
-          break;
-        }
-      }
-      if (header->face_list_property < 0) {
-        return error(element.line, "the face element has no 'vertex_indices' list property");
-      }
-    }
-  }
-  if (header->vertex_element < 0) return Status::InvalidInput(name + ": no vertex element");
-  return Status::Ok();
+  return CheckVertexAndFaceElements(name, header);
 }
 
 // Decodes one scalar of `type` from `p` (TypeSize(type) readable bytes), either endianness,
