@@ -67,32 +67,32 @@ bool DomainSurfaceStencil(const ManifoldDomain& domain, Index face, Vec2 uv,
   return true;
 }
 
-Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>& points,
-                           const std::vector<PointFit>& fits, const ControlFitOptions& options,
-                           std::vector<Vec3>* positions) {
-  const Index nv = domain.num_vertices();
-  const Index nf = domain.num_faces();
-  if (static_cast<Index>(positions->size()) != nv || fits.size() != points.size()) {
-    return Status::InvalidInput("control fit: sizes of positions, points and fits disagree");
-  }
-  // Points grouped by face (stable), so each face's block is accumulated in point order.
-  std::vector<std::size_t> start(static_cast<std::size_t>(nf) + 1, 0);
+namespace {
+
+// Points grouped by face (stable), so each face's block is accumulated in point order: the
+// points of face f are order[start[f] .. start[f + 1]). Points outside every chart are left out.
+void GroupByFace(const std::vector<PointFit>& fits, Index nf, std::vector<std::size_t>* start,
+                 std::vector<std::size_t>* order) {
+  start->assign(static_cast<std::size_t>(nf) + 1, 0);
   for (const PointFit& f : fits) {
-    if (f.status != PointFitStatus::kOutside && f.face >= 0 && f.face < nf) ++start[f.face + 1];
+    if (f.status != PointFitStatus::kOutside && f.face >= 0 && f.face < nf) ++(*start)[f.face + 1];
   }
-  for (Index f = 0; f < nf; ++f) start[f + 1] += start[f];
-  std::vector<std::size_t> order(start.back());
-  {
-    std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < fits.size(); ++i) {
-      const PointFit& f = fits[i];
-      if (f.status != PointFitStatus::kOutside && f.face >= 0 && f.face < nf) {
-        order[next[f.face]++] = i;
-      }
+  for (Index f = 0; f < nf; ++f) (*start)[f + 1] += (*start)[f];
+  order->assign(start->back(), 0);
+  std::vector<std::size_t> next(start->begin(), start->end() - 1);
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    const PointFit& f = fits[i];
+    if (f.status != PointFitStatus::kOutside && f.face >= 0 && f.face < nf) {
+      (*order)[next[f.face]++] = i;
     }
   }
-  // Residuals at the current positions, for the robust weights.
-  const int threads = ResolveThreadCount(options.threads);
+}
+
+// |D(z_k) - p_k| at the current positions, in `order`.
+std::vector<double> Residuals(const ManifoldDomain& domain, const std::vector<Vec3>& points,
+                              const std::vector<PointFit>& fits,
+                              const std::vector<std::size_t>& order,
+                              const std::vector<Vec3>& positions, int threads) {
   std::vector<double> residual(order.size(), 0.0);
   ParallelFor(threads, order.size(), [&](std::size_t b, std::size_t e) {
     std::vector<std::pair<Index, double>> st;
@@ -101,31 +101,46 @@ Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>
       st.clear();
       DomainSurfaceStencil(domain, f.face, f.uv, &st);
       Vec3 q(0.0);
-      for (const auto& [v, w] : st) q += w * (*positions)[v];
+      for (const auto& [v, w] : st) q += w * positions[v];
       const Vec3 r = q - points[order[k]];
       residual[k] = std::sqrt(glm::dot(r, r));
     }
   });
-  double cutoff = std::numeric_limits<double>::infinity();
-  if (!residual.empty() && options.robust_cutoff > 0.0) {
-    std::vector<double> sorted = residual;
-    std::nth_element(sorted.begin(),
-                     sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-    // A floor relative to the data's size: data already on the surface (median ~ 0) must not
-    // down-weight every other point to nothing.
-    Vec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
-    for (const Vec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    const Vec3 ext = hi - lo;
-    const double size = std::max(ext.x, std::max(ext.y, ext.z));
-    cutoff = options.robust_cutoff * std::max(sorted[sorted.size() / 2], 1e-9 * size);
-  }
-  // Per face: the distinct vertices of its stencils, a dense normal-equation block and the
-  // right-hand sides, accumulated over the face's points in order (parallel over faces).
-  struct FaceBlock {
-    std::vector<Index> vertices;
-    std::vector<double> ata;  // vertices^2, row-major
-    std::vector<double> atb;  // 3 per vertex
-  };
+  return residual;
+}
+
+// The residual beyond which a point's weight falls off: robust_cutoff times the median, with a
+// floor relative to the data's size (data already on the surface, median ~ 0, must not
+// down-weight every other point to nothing). Infinite when there is no robust weighting.
+double RobustCutoff(const std::vector<double>& residual, const std::vector<Vec3>& points,
+                    double robust_cutoff) {
+  if (residual.empty() || !(robust_cutoff > 0.0)) return std::numeric_limits<double>::infinity();
+  std::vector<double> sorted = residual;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
+  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  for (const Vec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const Vec3 ext = hi - lo;
+  const double size = std::max(ext.x, std::max(ext.y, ext.z));
+  return robust_cutoff * std::max(sorted[sorted.size() / 2], 1e-9 * size);
+}
+
+// One face's share of the normal equations: the distinct vertices of its stencils, a dense
+// block (vertices^2, row-major) and the right-hand sides (3 per vertex).
+struct FaceBlock {
+  std::vector<Index> vertices;
+  std::vector<double> ata;
+  std::vector<double> atb;
+};
+
+// The blocks of every face, each accumulated over the face's points in order (parallel over
+// faces), each point weighted by its robust weight.
+std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vector<Vec3>& points,
+                                  const std::vector<PointFit>& fits,
+                                  const std::vector<std::size_t>& start,
+                                  const std::vector<std::size_t>& order,
+                                  const std::vector<double>& residual, double cutoff, int threads) {
+  const Index nf = domain.num_faces();
   std::vector<FaceBlock> blocks(static_cast<std::size_t>(nf));
   ParallelFor(threads, static_cast<std::size_t>(nf), [&](std::size_t b, std::size_t e) {
     std::vector<std::pair<Index, double>> st;
@@ -170,7 +185,14 @@ Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>
       }
     }
   });
-  // Global assembly in face order; the diagonal's data weight summed in the same order.
+  return blocks;
+}
+
+// Assembles the blocks in face order, damps every vertex towards its current position in
+// proportion to its data weight, and solves (SimplicialLDLT); writes the new positions.
+Status SolveDamped(const std::vector<FaceBlock>& blocks, const ControlFitOptions& options,
+                   std::vector<Vec3>* positions) {
+  const Index nv = static_cast<Index>(positions->size());
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv, 3);
   std::vector<double> diagonal(static_cast<std::size_t>(nv), 0.0);
@@ -187,7 +209,6 @@ Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>
       }
     }
   }
-  // Damping towards the current positions, proportional to each vertex's data weight.
   double mean_diag = 0.0;
   for (double d : diagonal) mean_diag += d;
   mean_diag = nv > 0 ? mean_diag / nv : 0.0;
@@ -212,6 +233,26 @@ Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>
   }
   for (Index v = 0; v < nv; ++v) (*positions)[v] = Vec3(x(v, 0), x(v, 1), x(v, 2));
   return Status::Ok();
+}
+
+}  // namespace
+
+Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>& points,
+                           const std::vector<PointFit>& fits, const ControlFitOptions& options,
+                           std::vector<Vec3>* positions) {
+  const Index nv = domain.num_vertices();
+  const Index nf = domain.num_faces();
+  if (static_cast<Index>(positions->size()) != nv || fits.size() != points.size()) {
+    return Status::InvalidInput("control fit: sizes of positions, points and fits disagree");
+  }
+  std::vector<std::size_t> start, order;
+  GroupByFace(fits, nf, &start, &order);
+  const int threads = ResolveThreadCount(options.threads);
+  const std::vector<double> residual = Residuals(domain, points, fits, order, *positions, threads);
+  const double cutoff = RobustCutoff(residual, points, options.robust_cutoff);
+  const std::vector<FaceBlock> blocks =
+      FaceBlocks(domain, points, fits, start, order, residual, cutoff, threads);
+  return SolveDamped(blocks, options, positions);
 }
 
 }  // namespace dermis
