@@ -104,6 +104,7 @@ using text::IsSpace;
 using text::ParseDouble;
 using text::ParseInt;
 using text::Tokenize;
+using text::TrimRight;
 
 // Returns the line that starts at *pos (without its '\n') and moves *pos past the '\n'.
 std::string_view NextLine(std::string_view text, size_t* pos) {
@@ -112,11 +113,6 @@ std::string_view NextLine(std::string_view text, size_t* pos) {
   const std::string_view line = text.substr(*pos, end - *pos);
   *pos = end < text.size() ? end + 1 : end;
   return line;
-}
-
-std::string_view TrimRight(std::string_view s) {
-  while (!s.empty() && IsSpace(s.back())) s.remove_suffix(1);
-  return s;
 }
 
 bool ParseCount(std::string_view s, std::uint64_t* out) {

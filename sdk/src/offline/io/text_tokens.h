@@ -11,6 +11,12 @@ namespace dermis::text {
 
 inline bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
+/// `s` without trailing whitespace.
+inline std::string_view TrimRight(std::string_view s) {
+  while (!s.empty() && IsSpace(s.back())) s.remove_suffix(1);
+  return s;
+}
+
 /// Splits a line into whitespace-separated tokens (views into `line`).
 inline void Tokenize(std::string_view line, std::vector<std::string_view>* tokens) {
   tokens->clear();
