@@ -85,79 +85,76 @@ std::string SerializeCharacter(const Character& ch) {
   return dsurf::Finish(&w);
 }
 
-namespace dsurf {
+namespace {
 
-Status ReadCharacterBody(ByteReader* reader, Character* out) {
+// Part i: its mesh, component, skin, surface (a complete version-1 .dsurf), the influences of
+// its control vertices and its fit summary. Errors name the part.
+Status ReadPart(ByteReader* reader, const Asset& asset, std::uint32_t i, CharacterPart* p) {
   ByteReader& r = *reader;
-  const std::string& name = r.name();
-  Character ch;
-  const std::string asset_bytes = r.Str("asset");
+  p->mesh = r.I32("part mesh");
+  p->component = r.I32("part component");
+  p->skin = r.I32("part skin");
+  const std::string surface = r.Str("part surface");
   if (!r.ok()) return r.status();
-  Status s = ParseAsset(asset_bytes, name, &ch.asset);
-  if (!s.ok()) return s;
-  const std::uint32_t nparts = r.U32("part count");
-  // A part takes at least 12 + 8 + 8 + 84 bytes.
-  if (!r.Need(nparts, 112, "parts")) return r.status();
-  for (std::uint32_t i = 0; i < nparts && r.ok(); ++i) {
-    CharacterPart p;
-    p.mesh = r.I32("part mesh");
-    p.component = r.I32("part component");
-    p.skin = r.I32("part skin");
-    const std::string surface = r.Str("part surface");
-    if (!r.ok()) break;
-    const std::string where = name + ": part " + std::to_string(i);
-    if (p.mesh < kInvalidIndex || p.mesh >= static_cast<Index>(ch.asset.meshes.size()) ||
-        p.skin < kInvalidIndex || p.skin >= static_cast<Index>(ch.asset.skins.size())) {
-      return Status::InvalidInput(where + ": mesh or skin index out of range");
-    }
-    s = ParseDsurf(surface, where, &p.surface);
-    if (!s.ok()) return s;
-    const std::uint64_t n = r.U64("control influence count");
-    if (!r.Need(n, 32, "control influences")) break;
-    if (n != 0 && n != p.surface.rest_positions.size()) {
-      return Status::InvalidInput(where + ": " + std::to_string(n) + " control influences for " +
-                                  std::to_string(p.surface.rest_positions.size()) +
-                                  " control vertices");
-    }
-    p.control_joints.resize(n);
-    p.control_weights.resize(n);
-    const std::size_t njoints =
-        p.skin >= 0 ? ch.asset.skins[static_cast<std::size_t>(p.skin)].joints.size() : 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      for (int c = 0; c < 4; ++c) {
-        const std::uint32_t j = r.U32("control joint");
-        if (j >= njoints && r.ok())
-          r.Fail("part " + std::to_string(i) + ": control joint out of range");
-        p.control_joints[k][c] = static_cast<std::uint16_t>(j);
-      }
-      for (int c = 0; c < 4; ++c) {
-        const float x = r.F32("control weight");
-        if (!(x >= 0.0f && x <= 1.0f) && r.ok())
-          r.Fail("part " + std::to_string(i) + ": bad control weight");
-        p.control_weights[k][c] = x;
-      }
-    }
-    p.fit = ReadSummary(&r);
-    ch.parts.push_back(std::move(p));
+  const std::string where = r.name() + ": part " + std::to_string(i);
+  if (p->mesh < kInvalidIndex || p->mesh >= static_cast<Index>(asset.meshes.size()) ||
+      p->skin < kInvalidIndex || p->skin >= static_cast<Index>(asset.skins.size())) {
+    return Status::InvalidInput(where + ": mesh or skin index out of range");
   }
+  const Status s = ParseDsurf(surface, where, &p->surface);
+  if (!s.ok()) return s;
+  const std::uint64_t n = r.U64("control influence count");
+  if (!r.Need(n, 32, "control influences")) return r.status();
+  if (n != 0 && n != p->surface.rest_positions.size()) {
+    return Status::InvalidInput(where + ": " + std::to_string(n) + " control influences for " +
+                                std::to_string(p->surface.rest_positions.size()) +
+                                " control vertices");
+  }
+  p->control_joints.resize(n);
+  p->control_weights.resize(n);
+  const std::size_t njoints =
+      p->skin >= 0 ? asset.skins[static_cast<std::size_t>(p->skin)].joints.size() : 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int c = 0; c < 4; ++c) {
+      const std::uint32_t j = r.U32("control joint");
+      if (j >= njoints && r.ok())
+        r.Fail("part " + std::to_string(i) + ": control joint out of range");
+      p->control_joints[k][c] = static_cast<std::uint16_t>(j);
+    }
+    for (int c = 0; c < 4; ++c) {
+      const float x = r.F32("control weight");
+      if (!(x >= 0.0f && x <= 1.0f) && r.ok())
+        r.Fail("part " + std::to_string(i) + ": bad control weight");
+      p->control_weights[k][c] = x;
+    }
+  }
+  p->fit = ReadSummary(&r);
+  return r.status();
+}
+
+// The binding of every vertex of every primitive of every mesh of the asset; each must name a
+// part, a face of it and a parameter in the unit square, or no part.
+Status ReadBindings(ByteReader* reader, const Character& ch,
+                    std::vector<std::vector<std::vector<VertexBinding>>>* bindings) {
+  ByteReader& r = *reader;
   const std::uint32_t nmeshes = r.U32("binding mesh count");
   if (r.ok() && nmeshes != ch.asset.meshes.size()) r.Fail("bindings do not match the meshes");
-  ch.bindings.resize(r.ok() ? nmeshes : 0);
-  for (std::size_t m = 0; m < ch.bindings.size() && r.ok(); ++m) {
+  bindings->resize(r.ok() ? nmeshes : 0);
+  for (std::size_t m = 0; m < bindings->size() && r.ok(); ++m) {
     const std::uint32_t nprims = r.U32("binding primitive count");
     if (r.ok() && nprims != ch.asset.meshes[m].primitives.size()) {
       r.Fail("bindings of mesh " + std::to_string(m) + " do not match its primitives");
     }
-    ch.bindings[m].resize(r.ok() ? nprims : 0);
-    for (std::size_t p = 0; p < ch.bindings[m].size() && r.ok(); ++p) {
+    (*bindings)[m].resize(r.ok() ? nprims : 0);
+    for (std::size_t p = 0; p < (*bindings)[m].size() && r.ok(); ++p) {
       const std::uint64_t nv = r.U64("binding vertex count");
       if (r.ok() && nv != ch.asset.meshes[m].primitives[p].positions.size()) {
         r.Fail("bindings of mesh " + std::to_string(m) + " primitive " + std::to_string(p) +
                " do not match its vertices");
       }
       if (!r.Need(nv, 24, "bindings")) break;
-      ch.bindings[m][p].resize(nv);
-      for (VertexBinding& b : ch.bindings[m][p]) {
+      (*bindings)[m][p].resize(nv);
+      for (VertexBinding& b : (*bindings)[m][p]) {
         b.part = r.I32("binding part");
         b.face = r.I32("binding face");
         b.u = r.F64("binding u");
@@ -173,6 +170,12 @@ Status ReadCharacterBody(ByteReader* reader, Character* out) {
       }
     }
   }
+  return r.status();
+}
+
+// The components left as ordinary meshes, and why.
+Status ReadUnfitted(ByteReader* reader, std::vector<UnfittedPart>* unfitted) {
+  ByteReader& r = *reader;
   const std::uint32_t nun = r.U32("unfitted count");
   if (r.Need(nun, 28, "unfitted parts")) {
     for (std::uint32_t i = 0; i < nun && r.ok(); ++i) {
@@ -182,10 +185,35 @@ Status ReadCharacterBody(ByteReader* reader, Character* out) {
       u.vertices = r.I64("unfitted vertices");
       u.triangles = r.I64("unfitted triangles");
       u.reason = r.Str("unfitted reason");
-      ch.unfitted.push_back(std::move(u));
+      unfitted->push_back(std::move(u));
     }
   }
-  s = CheckEnd(r);
+  return r.status();
+}
+
+}  // namespace
+
+namespace dsurf {
+
+Status ReadCharacterBody(ByteReader* reader, Character* out) {
+  ByteReader& r = *reader;
+  Character ch;
+  const std::string asset_bytes = r.Str("asset");
+  if (!r.ok()) return r.status();
+  Status s = ParseAsset(asset_bytes, r.name(), &ch.asset);
+  if (!s.ok()) return s;
+  const std::uint32_t nparts = r.U32("part count");
+  // A part takes at least 12 + 8 + 8 + 84 bytes.
+  if (!r.Need(nparts, 112, "parts")) return r.status();
+  for (std::uint32_t i = 0; i < nparts; ++i) {
+    CharacterPart p;
+    s = ReadPart(&r, ch.asset, i, &p);
+    if (!s.ok()) return s;
+    ch.parts.push_back(std::move(p));
+  }
+  s = ReadBindings(&r, ch, &ch.bindings);
+  if (s.ok()) s = ReadUnfitted(&r, &ch.unfitted);
+  if (s.ok()) s = CheckEnd(r);
   if (!s.ok()) return s;
   *out = std::move(ch);
   return Status::Ok();

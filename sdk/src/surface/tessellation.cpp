@@ -9,6 +9,111 @@
 
 namespace dermis {
 
+namespace {
+
+// Where the samples of a level-n pattern lie: vertices first, then n - 1 per edge, then
+// (n - 1)^2 per face.
+struct SampleLayout {
+  long long n = 0;
+  std::uint32_t edge_base = 0, face_base = 0;
+};
+
+// Vertex samples, owned by ring face 0.
+void VertexSamples(const MeshTopology& topo, std::vector<SampleLocation>* samples) {
+  static const double kCornerU[4] = {0, 1, 1, 0}, kCornerV[4] = {0, 0, 1, 1};
+  for (Index v = 0; v < topo.num_vertices(); ++v) {
+    if (topo.valence(v) == 0) {
+      (*samples)[v] = SampleLocation{kInvalidIndex, 0, 0};
+      continue;
+    }
+    const RingCorner rc = topo.ring(v, 0);
+    (*samples)[v] = SampleLocation{rc.face, kCornerU[rc.corner], kCornerV[rc.corner]};
+  }
+}
+
+// Edge samples, owned by the face of the canonical half-edge.
+void EdgeSamples(const MeshTopology& topo, const SampleLayout& l,
+                 std::vector<SampleLocation>* samples) {
+  const long long n = l.n;
+  const double inv = 1.0 / static_cast<double>(n);
+  for (Index e = 0; e < topo.num_edges(); ++e) {
+    const Index h = topo.edge_halfedge(e);
+    const Index f = topo.halfedge_face(h);
+    const int k = static_cast<int>(h - topo.face_offset(f));
+    for (long long t = 1; t < n; ++t) {
+      // Exactly the grid values (i/n, j/n) that the owning face uses for this point.
+      const double a = static_cast<double>(t) * inv, b = static_cast<double>(n - t) * inv;
+      const double u = k == 0 ? a : k == 1 ? 1.0 : k == 2 ? b : 0.0;
+      const double v = k == 0 ? 0.0 : k == 1 ? a : k == 2 ? 1.0 : b;
+      (*samples)[l.edge_base + e * (n - 1) + (t - 1)] = SampleLocation{f, u, v};
+    }
+  }
+}
+
+// Grid point (i, j) of face f to a global sample index.
+std::uint32_t GridIndex(const MeshTopology& topo, const SampleLayout& l, Index f, long long i,
+                        long long j) {
+  const long long n = l.n;
+  if ((i == 0 || i == n) && (j == 0 || j == n)) {
+    const int corner = i == 0 ? (j == 0 ? 0 : 3) : (j == 0 ? 1 : 2);
+    return static_cast<std::uint32_t>(topo.face_vertex(f, corner));
+  }
+  if (i > 0 && i < n && j > 0 && j < n) {
+    return static_cast<std::uint32_t>(l.face_base + (f * (n - 1) + (j - 1)) * (n - 1) + (i - 1));
+  }
+  int k;
+  long long t;  // steps from the half-edge's origin
+  if (j == 0) {
+    k = 0;
+    t = i;
+  } else if (i == n) {
+    k = 1;
+    t = j;
+  } else if (j == n) {
+    k = 2;
+    t = n - i;
+  } else {
+    k = 3;
+    t = n - j;
+  }
+  const Index h = topo.face_offset(f) + k;
+  const Index e = topo.halfedge_edge(h);
+  if (topo.edge_halfedge(e) != h) t = n - t;
+  return static_cast<std::uint32_t>(l.edge_base + e * (n - 1) + (t - 1));
+}
+
+// Face samples and the two triangles of every grid cell, split along the diagonal towards the
+// cell's nearest face corner.
+void FaceSamplesAndTriangles(const MeshTopology& topo, const SampleLayout& l,
+                             TessellationPattern* p) {
+  const long long n = l.n;
+  const double inv = 1.0 / static_cast<double>(n);
+  for (Index f = 0; f < topo.num_faces(); ++f) {
+    for (long long j = 1; j < n; ++j)
+      for (long long i = 1; i < n; ++i)
+        p->samples[l.face_base + (f * (n - 1) + (j - 1)) * (n - 1) + (i - 1)] =
+            SampleLocation{f, static_cast<double>(i) * inv, static_cast<double>(j) * inv};
+    for (long long j = 0; j < n; ++j) {
+      for (long long i = 0; i < n; ++i) {
+        const std::uint32_t p00 = GridIndex(topo, l, f, i, j);
+        const std::uint32_t p10 = GridIndex(topo, l, f, i + 1, j);
+        const std::uint32_t p11 = GridIndex(topo, l, f, i + 1, j + 1);
+        const std::uint32_t p01 = GridIndex(topo, l, f, i, j + 1);
+        // Diagonal towards the nearest face corner: corners 0 and 2 -> p00-p11, 1 and 3 -> p10-p01.
+        const bool left = 2 * i + 1 < n, bottom = 2 * j + 1 < n;
+        const bool main_diagonal = left == bottom;
+        if (main_diagonal) {
+          p->triangles.insert(p->triangles.end(), {p00, p10, p11, p00, p11, p01});
+        } else {
+          p->triangles.insert(p->triangles.end(), {p00, p10, p01, p10, p11, p01});
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
 Status TessellationPattern::Build(const MeshTopology& topo, int level, TessellationPattern* out) {
   if (level < 1)
     return Status::InvalidInput("tessellation level " + std::to_string(level) +
@@ -29,84 +134,14 @@ Status TessellationPattern::Build(const MeshTopology& topo, int level, Tessellat
   TessellationPattern p;
   p.level = level;
   p.samples.resize(static_cast<size_t>(num_samples));
-  const double inv = 1.0 / static_cast<double>(n);
-  const std::uint32_t edge_base = static_cast<std::uint32_t>(nv);
-  const std::uint32_t face_base = static_cast<std::uint32_t>(nv + ne * (n - 1));
-
-  // Vertex samples, owned by ring face 0.
-  static const double kCornerU[4] = {0, 1, 1, 0}, kCornerV[4] = {0, 0, 1, 1};
-  for (Index v = 0; v < topo.num_vertices(); ++v) {
-    if (topo.valence(v) == 0) {
-      p.samples[v] = SampleLocation{kInvalidIndex, 0, 0};
-      continue;
-    }
-    const RingCorner rc = topo.ring(v, 0);
-    p.samples[v] = SampleLocation{rc.face, kCornerU[rc.corner], kCornerV[rc.corner]};
-  }
-  // Grid point (i, j) of face f to a global sample index.
-  auto grid_index = [&](Index f, long long i, long long j) -> std::uint32_t {
-    if ((i == 0 || i == n) && (j == 0 || j == n)) {
-      const int corner = i == 0 ? (j == 0 ? 0 : 3) : (j == 0 ? 1 : 2);
-      return static_cast<std::uint32_t>(topo.face_vertex(f, corner));
-    }
-    if (i > 0 && i < n && j > 0 && j < n) {
-      return static_cast<std::uint32_t>(face_base + (f * (n - 1) + (j - 1)) * (n - 1) + (i - 1));
-    }
-    int k;
-    long long t;  // steps from the half-edge's origin
-    if (j == 0) {
-      k = 0;
-      t = i;
-    } else if (i == n) {
-      k = 1;
-      t = j;
-    } else if (j == n) {
-      k = 2;
-      t = n - i;
-    } else {
-      k = 3;
-      t = n - j;
-    }
-    const Index h = topo.face_offset(f) + k;
-    const Index e = topo.halfedge_edge(h);
-    if (topo.edge_halfedge(e) != h) t = n - t;
-    return static_cast<std::uint32_t>(edge_base + e * (n - 1) + (t - 1));
-  };
-  // Edge samples, owned by the face of the canonical half-edge.
-  for (Index e = 0; e < topo.num_edges(); ++e) {
-    const Index h = topo.edge_halfedge(e);
-    const Index f = topo.halfedge_face(h);
-    const int k = static_cast<int>(h - topo.face_offset(f));
-    for (long long t = 1; t < n; ++t) {
-      // Exactly the grid values (i/n, j/n) that the owning face uses for this point.
-      const double a = static_cast<double>(t) * inv, b = static_cast<double>(n - t) * inv;
-      const double u = k == 0 ? a : k == 1 ? 1.0 : k == 2 ? b : 0.0;
-      const double v = k == 0 ? 0.0 : k == 1 ? a : k == 2 ? 1.0 : b;
-      p.samples[edge_base + e * (n - 1) + (t - 1)] = SampleLocation{f, u, v};
-    }
-  }
-  // Face samples and triangles.
+  SampleLayout layout;
+  layout.n = n;
+  layout.edge_base = static_cast<std::uint32_t>(nv);
+  layout.face_base = static_cast<std::uint32_t>(nv + ne * (n - 1));
+  VertexSamples(topo, &p.samples);
+  EdgeSamples(topo, layout, &p.samples);
   p.triangles.reserve(static_cast<size_t>(num_tris * 3));
-  for (Index f = 0; f < topo.num_faces(); ++f) {
-    for (long long j = 1; j < n; ++j)
-      for (long long i = 1; i < n; ++i)
-        p.samples[face_base + (f * (n - 1) + (j - 1)) * (n - 1) + (i - 1)] =
-            SampleLocation{f, static_cast<double>(i) * inv, static_cast<double>(j) * inv};
-    for (long long j = 0; j < n; ++j) {
-      for (long long i = 0; i < n; ++i) {
-        const std::uint32_t p00 = grid_index(f, i, j), p10 = grid_index(f, i + 1, j);
-        const std::uint32_t p11 = grid_index(f, i + 1, j + 1), p01 = grid_index(f, i, j + 1);
-        // Diagonal towards the nearest face corner: corners 0 and 2 -> p00-p11, 1 and 3 -> p10-p01.
-        const bool left = 2 * i + 1 < n, bottom = 2 * j + 1 < n;
-        const bool main_diagonal = left == bottom;
-        if (main_diagonal) {
-          p.triangles.insert(p.triangles.end(), {p00, p10, p11, p00, p11, p01});
-        } else {
-          p.triangles.insert(p.triangles.end(), {p00, p10, p01, p10, p11, p01});
-        }
-      }
-    }
-  }
+  FaceSamplesAndTriangles(topo, layout, &p);
   *out = std::move(p);
   return Status::Ok();
 }
