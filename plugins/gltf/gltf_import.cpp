@@ -294,6 +294,13 @@ class GltfImporter {
   Status ImportSkins(Asset* asset) const;
   Status CheckJointIndices(const Asset& asset) const;
   Status ImportAnimations(Asset* asset) const;
+  Status ImportSamplers(const tinygltf::Animation& anim, const std::string& ap, AssetAnimation* out,
+                        std::vector<Decoded>* outputs) const;
+  Status ImportChannels(const tinygltf::Animation& anim, const std::string& ap,
+                        const std::vector<Decoded>& outputs, AssetAnimation* out,
+                        std::vector<int>* components) const;
+  Status SetSamplerValues(const std::string& ap, const std::vector<Decoded>& outputs,
+                          std::vector<int>* components, AssetAnimation* out) const;
   Status ImportDsurf(std::string* bytes) const;
 
   std::string path_;
@@ -1123,6 +1130,129 @@ Status GltfImporter::CheckJointIndices(const Asset& asset) const {
   return Status::Ok();
 }
 
+// The samplers of an animation: interpolation and key times; the outputs stay decoded until
+// the channels say how many components they have.
+Status GltfImporter::ImportSamplers(const tinygltf::Animation& anim, const std::string& ap,
+                                    AssetAnimation* out, std::vector<Decoded>* outputs) const {
+  out->samplers.resize(anim.samplers.size());
+  outputs->resize(anim.samplers.size());
+  for (std::size_t s = 0; s < anim.samplers.size(); ++s) {
+    const tinygltf::AnimationSampler& in = anim.samplers[s];
+    AssetAnimationSampler& sampler = out->samplers[s];
+    const std::string sp = ap + Ptr("samplers", s);
+    if (in.interpolation == "LINEAR") {
+      sampler.interpolation = Interpolation::kLinear;
+    } else if (in.interpolation == "STEP") {
+      sampler.interpolation = Interpolation::kStep;
+    } else if (in.interpolation == "CUBICSPLINE") {
+      sampler.interpolation = Interpolation::kCubicSpline;
+    } else {
+      return Fail(sp + "/interpolation", "unknown interpolation '" + in.interpolation + "'");
+    }
+    Decoded times;
+    Status st = DecodeTyped(in.input, sp + "/input", {TINYGLTF_TYPE_SCALAR}, &times);
+    if (!st.ok()) return st;
+    sampler.times.reserve(times.count);
+    for (double t : times.values) sampler.times.push_back(static_cast<float>(t));
+    st =
+        DecodeTyped(in.output, sp + "/output",
+                    {TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, &(*outputs)[s]);
+    if (!st.ok()) return st;
+  }
+  return Status::Ok();
+}
+
+// The channels of an animation, and the component count each sampler's output must have (the
+// morph target count for weights); channels of extension paths or targets are skipped.
+Status GltfImporter::ImportChannels(const tinygltf::Animation& anim, const std::string& ap,
+                                    const std::vector<Decoded>& outputs, AssetAnimation* out,
+                                    std::vector<int>* components) const {
+  components->assign(anim.samplers.size(), 0);
+  for (std::size_t c = 0; c < anim.channels.size(); ++c) {
+    const tinygltf::AnimationChannel& in = anim.channels[c];
+    const std::string cp = ap + Ptr("channels", c);
+    if (in.sampler < 0 || static_cast<std::size_t>(in.sampler) >= anim.samplers.size()) {
+      return Fail(cp + "/sampler", "sampler " + Str(in.sampler) + " does not exist");
+    }
+    if (in.target_node < 0) continue;  // animates something an extension defines: skipped
+    if (static_cast<std::size_t>(in.target_node) >= model_.nodes.size()) {
+      return Fail(cp + "/target/node", "node " + Str(in.target_node) + " does not exist");
+    }
+    AssetAnimationChannel channel;
+    channel.sampler = in.sampler;
+    channel.node = in.target_node;
+    int k = 0;
+    const std::size_t s = static_cast<std::size_t>(in.sampler);
+    const Decoded& values = outputs[s];
+    if (in.target_path == "translation" || in.target_path == "scale") {
+      channel.path =
+          in.target_path == "scale" ? AnimationPath::kScale : AnimationPath::kTranslation;
+      k = 3;
+    } else if (in.target_path == "rotation") {
+      channel.path = AnimationPath::kRotation;
+      k = 4;
+    } else if (in.target_path == "weights") {
+      channel.path = AnimationPath::kWeights;
+      const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(in.target_node)];
+      if (node.mesh >= 0 &&
+          !model_.meshes[static_cast<std::size_t>(node.mesh)].primitives.empty()) {
+        k = static_cast<int>(
+            model_.meshes[static_cast<std::size_t>(node.mesh)].primitives[0].targets.size());
+      } else {
+        const std::size_t per_key =
+            out->samplers[s].times.size() *
+            (out->samplers[s].interpolation == Interpolation::kCubicSpline ? 3 : 1);
+        k = per_key == 0 ? 0 : static_cast<int>(values.values.size() / per_key);
+      }
+    } else {
+      continue;  // a path of an extension (e.g. KHR_animation_pointer): skipped
+    }
+    if (static_cast<std::size_t>(k) != values.components &&
+        channel.path != AnimationPath::kWeights) {
+      return Fail(ap + Ptr("samplers", s) + "/output", "accessor " + Str(anim.samplers[s].output) +
+                                                           " has type " + TypeName(values.type) +
+                                                           ", channel " + Str(std::uint64_t{c}) +
+                                                           " animates " + in.target_path);
+    }
+    if ((*components)[s] != 0 && (*components)[s] != k) {
+      return Fail(cp + "/sampler", "sampler " + Str(in.sampler) + " is shared by channels with " +
+                                       Str((*components)[s]) + " and " + Str(k) + " components");
+    }
+    (*components)[s] = k;
+    out->channels.push_back(channel);
+  }
+  return Status::Ok();
+}
+
+// Each sampler's output values, checked against its key count and component count (taken
+// from the output type for a sampler no channel uses).
+Status GltfImporter::SetSamplerValues(const std::string& ap, const std::vector<Decoded>& outputs,
+                                      std::vector<int>* components, AssetAnimation* out) const {
+  for (std::size_t s = 0; s < out->samplers.size(); ++s) {
+    AssetAnimationSampler& sampler = out->samplers[s];
+    const Decoded& values = outputs[s];
+    int& k = (*components)[s];
+    const std::size_t mult = sampler.interpolation == Interpolation::kCubicSpline ? 3 : 1;
+    if (k == 0) {  // unused by any channel: from the output type
+      k = values.type == TINYGLTF_TYPE_SCALAR && !sampler.times.empty()
+              ? static_cast<int>(values.values.size() / (sampler.times.size() * mult))
+              : static_cast<int>(values.components);
+    }
+    sampler.components = k;
+    const std::uint64_t expected =
+        std::uint64_t{sampler.times.size()} * mult * static_cast<std::uint64_t>(k);
+    if (values.values.size() != expected) {
+      return Fail(ap + Ptr("samplers", s) + "/output",
+                  Str(std::uint64_t{values.values.size()}) + " values, expected " + Str(expected) +
+                      " (" + Str(std::uint64_t{sampler.times.size()}) + " keyframes x " + Str(k) +
+                      " components" + (mult == 3 ? " x 3 for CUBICSPLINE)" : ")"));
+    }
+    sampler.values.reserve(values.values.size());
+    for (double v : values.values) sampler.values.push_back(static_cast<float>(v));
+  }
+  return Status::Ok();
+}
+
 Status GltfImporter::ImportAnimations(Asset* asset) const {
   asset->animations.resize(model_.animations.size());
   for (std::size_t a = 0; a < model_.animations.size(); ++a) {
@@ -1130,107 +1260,12 @@ Status GltfImporter::ImportAnimations(Asset* asset) const {
     AssetAnimation& out = asset->animations[a];
     const std::string ap = Ptr("animations", a);
     out.name = anim.name;
-    out.samplers.resize(anim.samplers.size());
-    std::vector<Decoded> outputs(anim.samplers.size());
-    for (std::size_t s = 0; s < anim.samplers.size(); ++s) {
-      const tinygltf::AnimationSampler& in = anim.samplers[s];
-      AssetAnimationSampler& sampler = out.samplers[s];
-      const std::string sp = ap + Ptr("samplers", s);
-      if (in.interpolation == "LINEAR") {
-        sampler.interpolation = Interpolation::kLinear;
-      } else if (in.interpolation == "STEP") {
-        sampler.interpolation = Interpolation::kStep;
-      } else if (in.interpolation == "CUBICSPLINE") {
-        sampler.interpolation = Interpolation::kCubicSpline;
-      } else {
-        return Fail(sp + "/interpolation", "unknown interpolation '" + in.interpolation + "'");
-      }
-      Decoded times;
-      Status st = DecodeTyped(in.input, sp + "/input", {TINYGLTF_TYPE_SCALAR}, &times);
-      if (!st.ok()) return st;
-      sampler.times.reserve(times.count);
-      for (double t : times.values) sampler.times.push_back(static_cast<float>(t));
-      st = DecodeTyped(in.output, sp + "/output",
-                       {TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, &outputs[s]);
-      if (!st.ok()) return st;
-    }
-    // Component counts from the channels (weights: the target's morph target count).
-    std::vector<int> components(anim.samplers.size(), 0);
-    for (std::size_t c = 0; c < anim.channels.size(); ++c) {
-      const tinygltf::AnimationChannel& in = anim.channels[c];
-      const std::string cp = ap + Ptr("channels", c);
-      if (in.sampler < 0 || static_cast<std::size_t>(in.sampler) >= anim.samplers.size()) {
-        return Fail(cp + "/sampler", "sampler " + Str(in.sampler) + " does not exist");
-      }
-      if (in.target_node < 0) continue;  // animates something an extension defines: skipped
-      if (static_cast<std::size_t>(in.target_node) >= model_.nodes.size()) {
-        return Fail(cp + "/target/node", "node " + Str(in.target_node) + " does not exist");
-      }
-      AssetAnimationChannel channel;
-      channel.sampler = in.sampler;
-      channel.node = in.target_node;
-      int k = 0;
-      const std::size_t s = static_cast<std::size_t>(in.sampler);
-      const Decoded& values = outputs[s];
-      if (in.target_path == "translation" || in.target_path == "scale") {
-        channel.path =
-            in.target_path == "scale" ? AnimationPath::kScale : AnimationPath::kTranslation;
-        k = 3;
-      } else if (in.target_path == "rotation") {
-        channel.path = AnimationPath::kRotation;
-        k = 4;
-      } else if (in.target_path == "weights") {
-        channel.path = AnimationPath::kWeights;
-        const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(in.target_node)];
-        if (node.mesh >= 0 &&
-            !model_.meshes[static_cast<std::size_t>(node.mesh)].primitives.empty()) {
-          k = static_cast<int>(
-              model_.meshes[static_cast<std::size_t>(node.mesh)].primitives[0].targets.size());
-        } else {
-          const std::size_t per_key =
-              out.samplers[s].times.size() *
-              (out.samplers[s].interpolation == Interpolation::kCubicSpline ? 3 : 1);
-          k = per_key == 0 ? 0 : static_cast<int>(values.values.size() / per_key);
-        }
-      } else {
-        continue;  // a path of an extension (e.g. KHR_animation_pointer): skipped
-      }
-      if (static_cast<std::size_t>(k) != values.components &&
-          channel.path != AnimationPath::kWeights) {
-        return Fail(ap + Ptr("samplers", s) + "/output",
-                    "accessor " + Str(anim.samplers[s].output) + " has type " +
-                        TypeName(values.type) + ", channel " + Str(std::uint64_t{c}) +
-                        " animates " + in.target_path);
-      }
-      if (components[s] != 0 && components[s] != k) {
-        return Fail(cp + "/sampler", "sampler " + Str(in.sampler) + " is shared by channels with " +
-                                         Str(components[s]) + " and " + Str(k) + " components");
-      }
-      components[s] = k;
-      out.channels.push_back(channel);
-    }
-    for (std::size_t s = 0; s < anim.samplers.size(); ++s) {
-      AssetAnimationSampler& sampler = out.samplers[s];
-      const Decoded& values = outputs[s];
-      const std::size_t mult = sampler.interpolation == Interpolation::kCubicSpline ? 3 : 1;
-      if (components[s] == 0) {  // unused by any channel: from the output type
-        components[s] = values.type == TINYGLTF_TYPE_SCALAR && !sampler.times.empty()
-                            ? static_cast<int>(values.values.size() / (sampler.times.size() * mult))
-                            : static_cast<int>(values.components);
-      }
-      sampler.components = components[s];
-      const std::uint64_t expected =
-          std::uint64_t{sampler.times.size()} * mult * static_cast<std::uint64_t>(components[s]);
-      if (values.values.size() != expected) {
-        return Fail(ap + Ptr("samplers", s) + "/output",
-                    Str(std::uint64_t{values.values.size()}) + " values, expected " +
-                        Str(expected) + " (" + Str(std::uint64_t{sampler.times.size()}) +
-                        " keyframes x " + Str(components[s]) + " components" +
-                        (mult == 3 ? " x 3 for CUBICSPLINE)" : ")"));
-      }
-      sampler.values.reserve(values.values.size());
-      for (double v : values.values) sampler.values.push_back(static_cast<float>(v));
-    }
+    std::vector<Decoded> outputs;
+    Status s = ImportSamplers(anim, ap, &out, &outputs);
+    std::vector<int> components;
+    if (s.ok()) s = ImportChannels(anim, ap, outputs, &out, &components);
+    if (s.ok()) s = SetSamplerValues(ap, outputs, &components, &out);
+    if (!s.ok()) return s;
   }
   return Status::Ok();
 }

@@ -99,16 +99,10 @@ int Influences(const AssetPrimitive& prim, std::size_t v) {
   return count;
 }
 
-/// The "asset" section of a report: everything an importer produced.
-Json DescribeAsset(const Asset& asset) {
-  Json j;
-  j["generator"] = asset.generator;
-  j["copyright"] = asset.copyright;
-  j["scenes"] = asset.scenes.size();
-  j["nodes"] = asset.nodes.size();
-
+/// The meshes of an asset, their totals, and the histogram of skinned vertices by number of
+/// non-zero weights.
+Json DescribeMeshes(const Asset& asset, Json* totals, std::vector<std::int64_t>* histogram) {
   std::int64_t total_primitives = 0, total_vertices = 0, total_triangles = 0;
-  std::vector<std::int64_t> histogram;  // [k] = skinned vertices with k non-zero weights
   Json meshes = Json::array();
   for (const AssetMesh& mesh : asset.meshes) {
     Json m;
@@ -130,8 +124,8 @@ Json DescribeAsset(const Asset& asset) {
       if (!prim.weights.empty()) {
         for (std::size_t v = 0; v < prim.positions.size(); ++v) {
           const auto k = static_cast<std::size_t>(Influences(prim, v));
-          if (histogram.size() <= k) histogram.resize(k + 1, 0);
-          ++histogram[k];
+          if (histogram->size() <= k) histogram->resize(k + 1, 0);
+          ++(*histogram)[k];
         }
       }
     }
@@ -143,11 +137,41 @@ Json DescribeAsset(const Asset& asset) {
     total_vertices += vertices;
     total_triangles += triangles;
   }
+  (*totals)["meshes"] = asset.meshes.size();
+  (*totals)["primitives"] = total_primitives;
+  (*totals)["vertices"] = total_vertices;
+  (*totals)["triangles"] = total_triangles;
+  return meshes;
+}
+
+/// Clips: duration, channels, samplers and keyframes of each.
+Json DescribeClips(const Asset& asset) {
+  Json clips = Json::array();
+  for (const AssetAnimation& anim : asset.animations) {
+    Json c;
+    c["name"] = anim.name;
+    c["duration"] = anim.Duration();
+    c["channels"] = anim.channels.size();
+    c["samplers"] = anim.samplers.size();
+    std::int64_t keyframes = 0;
+    for (const AssetAnimationSampler& s : anim.samplers)
+      keyframes += static_cast<std::int64_t>(s.times.size());
+    c["keyframes"] = keyframes;
+    clips.push_back(c);
+  }
+  return clips;
+}
+
+/// The "asset" section of a report: everything an importer produced.
+Json DescribeAsset(const Asset& asset) {
+  Json j;
+  j["generator"] = asset.generator;
+  j["copyright"] = asset.copyright;
+  j["scenes"] = asset.scenes.size();
+  j["nodes"] = asset.nodes.size();
   Json totals;
-  totals["meshes"] = asset.meshes.size();
-  totals["primitives"] = total_primitives;
-  totals["vertices"] = total_vertices;
-  totals["triangles"] = total_triangles;
+  std::vector<std::int64_t> histogram;  // [k] = skinned vertices with k non-zero weights
+  Json meshes = DescribeMeshes(asset, &totals, &histogram);
   j["totals"] = totals;
   j["meshes"] = meshes;
 
@@ -168,21 +192,7 @@ Json DescribeAsset(const Asset& asset) {
   influences["max"] = histogram.empty() ? 0 : histogram.size() - 1;
   influences["histogram"] = histogram;  // index = influences, value = vertices
   j["influences"] = influences;
-
-  Json clips = Json::array();
-  for (const AssetAnimation& anim : asset.animations) {
-    Json c;
-    c["name"] = anim.name;
-    c["duration"] = anim.Duration();
-    c["channels"] = anim.channels.size();
-    c["samplers"] = anim.samplers.size();
-    std::int64_t keyframes = 0;
-    for (const AssetAnimationSampler& s : anim.samplers)
-      keyframes += static_cast<std::int64_t>(s.times.size());
-    c["keyframes"] = keyframes;
-    clips.push_back(c);
-  }
-  j["clips"] = clips;
+  j["clips"] = DescribeClips(asset);
 
   Json materials = Json::array();
   for (const AssetMaterial& material : asset.materials) materials.push_back(material.name);

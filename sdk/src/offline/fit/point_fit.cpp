@@ -21,14 +21,9 @@ double SignedDistance(const LocalPatch& patch, Vec2 z, const Vec3& p) {
   return glm::dot(p - f.p, f.n);
 }
 
-}  // namespace
-
-void FitPoints(const ControlSurface& surface, const std::vector<Vec3>& points,
-               const PointFitOptions& options, std::vector<PointFit>* out) {
-  const ManifoldDomain& domain = *surface.domain;
-  const LocalPatch* patches = surface.patches.data();
-  const std::vector<Vec3>& x = surface.control.positions;
-  // Closest control face: each quad as the triangles (0, 1, 2) and (0, 2, 3).
+// The closest control face of a point: each quad as the triangles (0, 1, 2) and (0, 2, 3).
+void BuildControlFaceTree(const ManifoldDomain& domain, const std::vector<Vec3>& x,
+                          TriangleDistanceTree* tree) {
   std::vector<std::uint32_t> triangles;
   const Index num_faces = domain.num_faces();
   triangles.reserve(static_cast<std::size_t>(num_faces) * 6);
@@ -38,89 +33,101 @@ void FitPoints(const ControlSurface& surface, const std::vector<Vec3>& points,
     };
     triangles.insert(triangles.end(), {c(0), c(1), c(2), c(0), c(2), c(3)});
   }
+  tree->Build(x, triangles);
+}
+
+// Yoon's projection (paper section 4, "Initial displacements") of point p, then the
+// optimisation of Eq. 5 (docs/notes/fit.md section 4b); fills *out.
+void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std::vector<Vec3>& x,
+              const TriangleDistanceTree& tree, const Vec3& p, const PointFitOptions& options,
+              PointFit* out) {
+  PointFit& r = *out;
+  const ClosestPoint cp = tree.Query(p);
+  if (cp.triangle == kInvalidIndex) return;
+  const Index face = cp.triangle / 2;
+  const Vec3& b = cp.barycentric;
+  // Face coordinates of the projection on the control face (exact for parallelograms).
+  const Vec2 uv0 = (cp.triangle % 2 == 0) ? Vec2(b.y + b.z, b.z) : Vec2(b.y, b.y + b.z);
+  // Corners by distance from the projection; the nearest whose patch projection stays in
+  // its chart is used (Yoon uses the nearest only; the others rescue points near the edge
+  // of a chart's reach).
+  int order[4] = {0, 1, 2, 3};
+  double dist[4];
+  for (int a = 0; a < 4; ++a) {
+    const Vec3 d = x[domain.topology().face_vertex(face, a)] - cp.point;
+    dist[a] = glm::dot(d, d);
+  }
+  std::sort(order, order + 4,
+            [&](int l, int m) { return dist[l] < dist[m] || (dist[l] == dist[m] && l < m); });
+  Index v0 = kInvalidIndex, face1 = kInvalidIndex;
+  Vec2 z0, uv1;
+  for (int k = 0; k < 4 && v0 == kInvalidIndex; ++k) {
+    const int corner = order[k];
+    const Index v = domain.topology().face_vertex(face, corner);
+    const Vec2 z = ProjectOntoPatch(patches[v], p, domain.FaceToChart(face, corner, uv0), 20);
+    if (InsideChart(domain, v, z) && domain.ChartToFace(v, z, &face1, &uv1)) v0 = v, z0 = z;
+  }
+  if (v0 == kInvalidIndex) {
+    // No patch projection stayed in its chart: start the blended solve from the control
+    // face.
+    const int corner = order[0];
+    const Index v = domain.topology().face_vertex(face, corner);
+    const Vec2 z = domain.FaceToChart(face, corner, uv0);
+    if (!options.optimize) return;
+    const CommonDisplacementSolution s = SolveCommonDisplacement(
+        domain, patches, p, v, z, SignedDistance(patches[v], z, p), options.tolerance);
+    if (!s.converged) return;
+    const int c = DominantCorner(s.uv);
+    v0 = domain.topology().face_vertex(s.face, c);
+    z0 = domain.FaceToChart(s.face, c, s.uv);
+    face1 = s.face, uv1 = s.uv;
+  }
+  r.projected_face = face1;
+  r.projected_uv = uv1;
+  r.delta = SignedDistance(patches[v0], z0, p);
+  // The other corners: transition, then a few Newton steps on their own patch.
+  for (int a = 0; a < 4; ++a) {
+    const Index va = domain.topology().face_vertex(face1, a);
+    Vec2 za = va == v0 ? z0 : domain.FaceToChart(face1, a, uv1);
+    if (va != v0) za = ProjectOntoPatch(patches[va], p, za, 3);
+    if (!InsideChart(domain, va, za)) continue;
+    r.projected[r.num_projected++] = ChartSample{va, za, SignedDistance(patches[va], za, p)};
+  }
+  r.status = PointFitStatus::kNotConverged;
+  r.face = face1;
+  r.uv = uv1;
+  if (!options.optimize) return;
+  const CommonDisplacementSolution s =
+      SolveCommonDisplacement(domain, patches, p, v0, z0, r.delta, options.tolerance);
+  if (!s.converged) return;
+  r.status = PointFitStatus::kOptimized;
+  r.face = s.face;
+  r.uv = s.uv;
+  r.delta = s.delta;
+  const double ub = 1.0 - domain.options().blend_lb;
+  for (int a = 0; a < 4; ++a) {
+    const Vec2 cd = FaceToCorner(a, s.uv);
+    if (cd.x >= ub || cd.y >= ub) continue;
+    r.optimized[r.num_optimized++] = ChartSample{domain.topology().face_vertex(s.face, a),
+                                                 domain.FaceToChart(s.face, a, s.uv), s.delta};
+  }
+}
+
+}  // namespace
+
+void FitPoints(const ControlSurface& surface, const std::vector<Vec3>& points,
+               const PointFitOptions& options, std::vector<PointFit>* out) {
+  const ManifoldDomain& domain = *surface.domain;
   TriangleDistanceTree tree;
-  tree.Build(x, triangles);
+  BuildControlFaceTree(domain, surface.control.positions, &tree);
   out->assign(points.size(), PointFit());
-  ParallelFor(
-      ResolveThreadCount(options.threads), points.size(), [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-          const Vec3& p = points[i];
-          PointFit& r = (*out)[i];
-          const ClosestPoint cp = tree.Query(p);
-          if (cp.triangle == kInvalidIndex) continue;
-          const Index face = cp.triangle / 2;
-          const Vec3& b = cp.barycentric;
-          // Face coordinates of the projection on the control face (exact for parallelograms).
-          const Vec2 uv0 = (cp.triangle % 2 == 0) ? Vec2(b.y + b.z, b.z) : Vec2(b.y, b.y + b.z);
-          // Corners by distance from the projection; the nearest whose patch projection stays in
-          // its chart is used (Yoon uses the nearest only; the others rescue points near the edge
-          // of a chart's reach).
-          int order[4] = {0, 1, 2, 3};
-          double dist[4];
-          for (int a = 0; a < 4; ++a) {
-            const Vec3 d = x[domain.topology().face_vertex(face, a)] - cp.point;
-            dist[a] = glm::dot(d, d);
-          }
-          std::sort(order, order + 4, [&](int l, int m) {
-            return dist[l] < dist[m] || (dist[l] == dist[m] && l < m);
-          });
-          Index v0 = kInvalidIndex, face1 = kInvalidIndex;
-          Vec2 z0, uv1;
-          for (int k = 0; k < 4 && v0 == kInvalidIndex; ++k) {
-            const int corner = order[k];
-            const Index v = domain.topology().face_vertex(face, corner);
-            const Vec2 z =
-                ProjectOntoPatch(patches[v], p, domain.FaceToChart(face, corner, uv0), 20);
-            if (InsideChart(domain, v, z) && domain.ChartToFace(v, z, &face1, &uv1)) v0 = v, z0 = z;
-          }
-          if (v0 == kInvalidIndex) {
-            // No patch projection stayed in its chart: start the blended solve from the control
-            // face.
-            const int corner = order[0];
-            const Index v = domain.topology().face_vertex(face, corner);
-            const Vec2 z = domain.FaceToChart(face, corner, uv0);
-            if (!options.optimize) continue;
-            const CommonDisplacementSolution s = SolveCommonDisplacement(
-                domain, patches, p, v, z, SignedDistance(patches[v], z, p), options.tolerance);
-            if (!s.converged) continue;
-            const int c = DominantCorner(s.uv);
-            v0 = domain.topology().face_vertex(s.face, c);
-            z0 = domain.FaceToChart(s.face, c, s.uv);
-            face1 = s.face, uv1 = s.uv;
-          }
-          r.projected_face = face1;
-          r.projected_uv = uv1;
-          r.delta = SignedDistance(patches[v0], z0, p);
-          // The other corners: transition, then a few Newton steps on their own patch.
-          for (int a = 0; a < 4; ++a) {
-            const Index va = domain.topology().face_vertex(face1, a);
-            Vec2 za = va == v0 ? z0 : domain.FaceToChart(face1, a, uv1);
-            if (va != v0) za = ProjectOntoPatch(patches[va], p, za, 3);
-            if (!InsideChart(domain, va, za)) continue;
-            r.projected[r.num_projected++] =
-                ChartSample{va, za, SignedDistance(patches[va], za, p)};
-          }
-          r.status = PointFitStatus::kNotConverged;
-          r.face = face1;
-          r.uv = uv1;
-          if (!options.optimize) continue;
-          const CommonDisplacementSolution s =
-              SolveCommonDisplacement(domain, patches, p, v0, z0, r.delta, options.tolerance);
-          if (!s.converged) continue;
-          r.status = PointFitStatus::kOptimized;
-          r.face = s.face;
-          r.uv = s.uv;
-          r.delta = s.delta;
-          const double ub = 1.0 - domain.options().blend_lb;
-          for (int a = 0; a < 4; ++a) {
-            const Vec2 cd = FaceToCorner(a, s.uv);
-            if (cd.x >= ub || cd.y >= ub) continue;
-            r.optimized[r.num_optimized++] =
-                ChartSample{domain.topology().face_vertex(s.face, a),
-                            domain.FaceToChart(s.face, a, s.uv), s.delta};
-          }
-        }
-      });
+  ParallelFor(ResolveThreadCount(options.threads), points.size(),
+              [&](std::size_t begin, std::size_t end) {
+                for (std::size_t i = begin; i < end; ++i) {
+                  FitPoint(domain, surface.patches.data(), surface.control.positions, tree,
+                           points[i], options, &(*out)[i]);
+                }
+              });
 }
 
 }  // namespace dermis

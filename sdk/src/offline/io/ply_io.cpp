@@ -396,12 +396,71 @@ std::uint64_t VertexCount(const Header& header) {
   return header.elements[static_cast<size_t>(header.vertex_element)].count;
 }
 
+// The values of one entry of element e on one line (`tokens`): vertex coordinates into *p,
+// the face list added to the mesh, every other value checked to be a number.
+Status ParseAsciiEntry(const std::vector<std::string_view>& tokens, const Header& header, size_t e,
+                       const std::string& name, int line_no, std::vector<std::int64_t>* face,
+                       Vec3* p, PolygonMesh* m) {
+  auto error = [&](const std::string& what) { return LineError(name, line_no, what); };
+  const Element& element = header.elements[e];
+  const bool is_face = static_cast<int>(e) == header.face_element;
+  size_t k = 0;
+  for (size_t q = 0; q < element.properties.size(); ++q) {
+    const Property& property = element.properties[q];
+    if (k >= tokens.size()) {
+      return error("the line ends before " + element.name + " property " + Quote(property.name) +
+                   " (" + std::to_string(tokens.size()) + " values)");
+    }
+    if (!property.is_list) {
+      const std::string_view token = tokens[k++];
+      double x;
+      if (!ParseDouble(token, &x)) return error(Quote(token) + " is not a number");
+      const int axis = AxisOf(header, e, q);
+      if (axis >= 0) {
+        if (!std::isfinite(x)) return error("vertex coordinate " + Quote(token) + " is not finite");
+        (*p)[axis] = x;
+      }
+      continue;
+    }
+    const std::string_view count_token = tokens[k++];
+    long long count;
+    if (!ParseInt(count_token, &count)) return error(Quote(count_token) + " is not a list count");
+    if (count < 0) return error("negative list count " + std::to_string(count));
+    const size_t left = tokens.size() - k;
+    if (static_cast<unsigned long long>(count) > left) {
+      return error("list count " + std::to_string(count) +
+                   " is larger than the number of values left on the line (" +
+                   std::to_string(left) + ")");
+    }
+    const size_t n = static_cast<size_t>(count);
+    const bool is_face_list = is_face && static_cast<int>(q) == header.face_list_property;
+    if (is_face_list) face->clear();
+    for (size_t j = 0; j < n; ++j) {
+      const std::string_view token = tokens[k++];
+      if (is_face_list) {
+        long long v;
+        if (!ParseInt(token, &v)) return error(Quote(token) + " is not a vertex index");
+        face->push_back(v);
+      } else {
+        double x;
+        if (!ParseDouble(token, &x)) return error(Quote(token) + " is not a number");
+      }
+    }
+    if (is_face_list) {
+      const std::string problem = CheckedAddFace(*face, VertexCount(header), m);
+      if (!problem.empty()) return error(problem);
+      m->face_lines.push_back(line_no);
+    }
+  }
+  if (k < tokens.size()) {
+    return error("unexpected value " + Quote(tokens[k]) + " after the last " + element.name +
+                 " property");
+  }
+  return Status::Ok();
+}
+
 Status ParseAsciiBody(std::string_view bytes, const std::string& name, const Header& header,
                       PolygonMesh* m) {
-  auto error = [&](int line, const std::string& what) {
-    return Status::InvalidInput(name + ":" + std::to_string(line) + ": " + what);
-  };
-  const std::uint64_t num_vertices = VertexCount(header);
   size_t pos = header.body_offset;
   int line_no = header.end_header_line;
   std::vector<std::string_view> tokens;
@@ -434,69 +493,14 @@ Status ParseAsciiBody(std::string_view bytes, const std::string& name, const Hea
         }
       }
       if (!have_line) {
-        return error(line_no, "the file ends after " + std::to_string(i) + " of " +
-                                  std::to_string(element.count) + " " + element.name +
-                                  " elements (truncated data)");
+        return LineError(name, line_no,
+                         "the file ends after " + std::to_string(i) + " of " +
+                             std::to_string(element.count) + " " + element.name +
+                             " elements (truncated data)");
       }
       Vec3 p(0.0);
-      size_t k = 0;
-      for (size_t q = 0; q < element.properties.size(); ++q) {
-        const Property& property = element.properties[q];
-        if (k >= tokens.size()) {
-          return error(line_no, "the line ends before " + element.name + " property " +
-                                    Quote(property.name) + " (" + std::to_string(tokens.size()) +
-                                    " values)");
-        }
-        if (!property.is_list) {
-          const std::string_view token = tokens[k++];
-          double x;
-          if (!ParseDouble(token, &x)) return error(line_no, Quote(token) + " is not a number");
-          const int axis = AxisOf(header, e, q);
-          if (axis >= 0) {
-            if (!std::isfinite(x)) {
-              return error(line_no, "vertex coordinate " + Quote(token) + " is not finite");
-            }
-            p[axis] = x;
-          }
-          continue;
-        }
-        const std::string_view count_token = tokens[k++];
-        long long count;
-        if (!ParseInt(count_token, &count)) {
-          return error(line_no, Quote(count_token) + " is not a list count");
-        }
-        if (count < 0) return error(line_no, "negative list count " + std::to_string(count));
-        const size_t left = tokens.size() - k;
-        if (static_cast<unsigned long long>(count) > left) {
-          return error(line_no, "list count " + std::to_string(count) +
-                                    " is larger than the number of values left on the line (" +
-                                    std::to_string(left) + ")");
-        }
-        const size_t n = static_cast<size_t>(count);
-        const bool is_face_list = is_face && static_cast<int>(q) == header.face_list_property;
-        if (is_face_list) face.clear();
-        for (size_t j = 0; j < n; ++j) {
-          const std::string_view token = tokens[k++];
-          if (is_face_list) {
-            long long v;
-            if (!ParseInt(token, &v))
-              return error(line_no, Quote(token) + " is not a vertex index");
-            face.push_back(v);
-          } else {
-            double x;
-            if (!ParseDouble(token, &x)) return error(line_no, Quote(token) + " is not a number");
-          }
-        }
-        if (is_face_list) {
-          const std::string problem = CheckedAddFace(face, num_vertices, m);
-          if (!problem.empty()) return error(line_no, problem);
-          m->face_lines.push_back(line_no);
-        }
-      }
-      if (k < tokens.size()) {
-        return error(line_no, "unexpected value " + Quote(tokens[k]) + " after the last " +
-                                  element.name + " property");
-      }
+      const Status s = ParseAsciiEntry(tokens, header, e, name, line_no, &face, &p, m);
+      if (!s.ok()) return s;
       if (is_vertex) {
         m->positions.push_back(p);
         m->vertex_lines.push_back(line_no);
@@ -506,13 +510,71 @@ Status ParseAsciiBody(std::string_view bytes, const std::string& name, const Hea
   return Status::Ok();
 }
 
+// A binary body being read: the bytes, their byte order, the read position.
+struct BinaryCursor {
+  const unsigned char* data;
+  size_t size;
+  bool big_endian;
+  size_t pos;
+};
+
+// Entry i of element e: vertex coordinates into *p, the face list added to the mesh, every
+// other value skipped. `error(what)` names the entry.
+template <typename Error>
+Status ParseBinaryEntry(const Header& header, size_t e, std::uint64_t i, const Error& error,
+                        BinaryCursor* c, std::vector<std::int64_t>* face, Vec3* p, PolygonMesh* m) {
+  const Element& element = header.elements[e];
+  const bool is_face = static_cast<int>(e) == header.face_element;
+  for (size_t q = 0; q < element.properties.size(); ++q) {
+    const Property& property = element.properties[q];
+    const Type first_type = property.is_list ? property.count_type : property.type;
+    const size_t first_size = TypeSize(first_type);
+    if (c->size - c->pos < first_size) {
+      return error(i, "truncated data: the file ends inside this " + element.name);
+    }
+    const std::uint64_t bits = LoadBits(c->data + c->pos, first_size, c->big_endian);
+    c->pos += first_size;
+    if (!property.is_list) {
+      const int axis = AxisOf(header, e, q);
+      if (axis >= 0) {
+        const double x = BitsToNumber(property.type, bits);
+        if (!std::isfinite(x)) {
+          return error(
+              i, "vertex coordinate " + property.name + " = " + NumberText(x) + " is not finite");
+        }
+        (*p)[axis] = x;
+      }
+      continue;
+    }
+    const std::int64_t n = BitsToInt(property.count_type, bits);
+    if (n < 0) return error(i, "negative list count " + std::to_string(n));
+    const size_t item_size = TypeSize(property.type);
+    const size_t left = c->size - c->pos;
+    if (static_cast<std::uint64_t>(n) > left / item_size) {
+      return error(i, "list count " + std::to_string(n) + " is larger than the " +
+                          std::to_string(left) + " bytes left (truncated data)");
+    }
+    const size_t items = static_cast<size_t>(n);
+    if (is_face && static_cast<int>(q) == header.face_list_property) {
+      face->clear();
+      for (size_t j = 0; j < items; ++j) {
+        face->push_back(
+            BitsToInt(property.type, LoadBits(c->data + c->pos, item_size, c->big_endian)));
+        c->pos += item_size;
+      }
+      const std::string problem = CheckedAddFace(*face, VertexCount(header), m);
+      if (!problem.empty()) return error(i, problem);
+    } else {
+      c->pos += items * item_size;
+    }
+  }
+  return Status::Ok();
+}
+
 Status ParseBinaryBody(std::string_view bytes, const std::string& name, const Header& header,
                        PolygonMesh* m) {
-  const bool big_endian = header.format == Format::kBinaryBigEndian;
-  const unsigned char* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  const size_t size = bytes.size();
-  const std::uint64_t num_vertices = VertexCount(header);
-  size_t pos = header.body_offset;
+  BinaryCursor c{reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
+                 header.format == Format::kBinaryBigEndian, header.body_offset};
   std::vector<std::int64_t> face;
   for (size_t e = 0; e < header.elements.size(); ++e) {
     const Element& element = header.elements[e];
@@ -533,7 +595,7 @@ Status ParseBinaryBody(std::string_view bytes, const std::string& name, const He
     // At most this many entries fit in the rest of the data: a fixed-size element that
     // declares more is truncated at exactly that entry; for elements with lists the loop below
     // finds where the data ends. Reservations never exceed what the bytes can hold.
-    const size_t remaining = size - pos;
+    const size_t remaining = c.size - c.pos;
     const size_t fit = remaining / min_size;
     if (!has_list && element.count > fit) {
       return error(fit, "truncated data: the file ends inside this " + element.name + " (" +
@@ -541,7 +603,7 @@ Status ParseBinaryBody(std::string_view bytes, const std::string& name, const He
     }
     const std::uint64_t count = element.count;
     if (!is_vertex && !is_face && !has_list) {
-      pos += static_cast<size_t>(count) * min_size;  // <= remaining, checked above.
+      c.pos += static_cast<size_t>(count) * min_size;  // <= remaining, checked above.
       continue;
     }
     const size_t bound = static_cast<size_t>(std::min<std::uint64_t>(count, fit));
@@ -555,48 +617,8 @@ Status ParseBinaryBody(std::string_view bytes, const std::string& name, const He
     // Every entry takes at least min_size > 0 bytes, so a lying count ends at the data's end.
     for (std::uint64_t i = 0; i < count; ++i) {
       Vec3 p(0.0);
-      for (size_t q = 0; q < element.properties.size(); ++q) {
-        const Property& property = element.properties[q];
-        const Type first_type = property.is_list ? property.count_type : property.type;
-        const size_t first_size = TypeSize(first_type);
-        if (size - pos < first_size) {
-          return error(i, "truncated data: the file ends inside this " + element.name);
-        }
-        const std::uint64_t bits = LoadBits(data + pos, first_size, big_endian);
-        pos += first_size;
-        if (!property.is_list) {
-          const int axis = AxisOf(header, e, q);
-          if (axis >= 0) {
-            const double x = BitsToNumber(property.type, bits);
-            if (!std::isfinite(x)) {
-              return error(i, "vertex coordinate " + property.name + " = " + NumberText(x) +
-                                  " is not finite");
-            }
-            p[axis] = x;
-          }
-          continue;
-        }
-        const std::int64_t n = BitsToInt(property.count_type, bits);
-        if (n < 0) return error(i, "negative list count " + std::to_string(n));
-        const size_t item_size = TypeSize(property.type);
-        const size_t left = size - pos;
-        if (static_cast<std::uint64_t>(n) > left / item_size) {
-          return error(i, "list count " + std::to_string(n) + " is larger than the " +
-                              std::to_string(left) + " bytes left (truncated data)");
-        }
-        const size_t items = static_cast<size_t>(n);
-        if (is_face && static_cast<int>(q) == header.face_list_property) {
-          face.clear();
-          for (size_t j = 0; j < items; ++j) {
-            face.push_back(BitsToInt(property.type, LoadBits(data + pos, item_size, big_endian)));
-            pos += item_size;
-          }
-          const std::string problem = CheckedAddFace(face, num_vertices, m);
-          if (!problem.empty()) return error(i, problem);
-        } else {
-          pos += items * item_size;
-        }
-      }
+      const Status s = ParseBinaryEntry(header, e, i, error, &c, &face, &p, m);
+      if (!s.ok()) return s;
       if (is_vertex) m->positions.push_back(p);
     }
   }
