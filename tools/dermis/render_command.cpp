@@ -164,6 +164,65 @@ bool ParseSize(const std::string& s, int* w, int* h) {
   return *w >= 16 && *h >= 16 && *w <= 8192 && *h <= 8192;
 }
 
+// The displacement levels of --series "0,2,-1" (each in -1..16); false if it is malformed.
+bool ParseSeries(const std::string& series, std::vector<int>* levels) {
+  levels->clear();
+  std::size_t at = 0;
+  while (at <= series.size()) {
+    const std::size_t comma = std::min(series.find(',', at), series.size());
+    const std::string item = series.substr(at, comma - at);
+    int L = -2;
+    const auto r = std::from_chars(item.data(), item.data() + item.size(), L);
+    if (r.ec != std::errc() || r.ptr != item.data() + item.size() || L < -1 || L > 16) {
+      return false;
+    }
+    levels->push_back(L);
+    at = comma + 1;
+  }
+  return true;
+}
+
+// Colours every surface of `surfaces` by its distance to the --reference mesh; *stats receives
+// "mean M max X" per surface and *range the top of the shared colour scale.
+Status ErrorMaps(const RenderArgs& a, std::vector<std::vector<render::Mesh>>* surfaces,
+                 std::vector<std::string>* stats, float* range) {
+  PolygonMesh ref;
+  Index dropped = 0;
+  const Status s = ReadFitInput(a.reference, &ref, &dropped, &Importers());
+  if (!s.ok()) return s;
+  std::vector<std::uint32_t> tris;
+  for (Index f = 0; f < ref.num_faces(); ++f) {
+    const Index* fv = ref.face_vertices.data() + ref.face_offsets[f];
+    for (Index k = 1; k + 1 < ref.face_size(f); ++k) {
+      tris.insert(tris.end(), {static_cast<std::uint32_t>(fv[0]), static_cast<std::uint32_t>(fv[k]),
+                               static_cast<std::uint32_t>(fv[k + 1])});
+    }
+  }
+  if (tris.empty()) return Status::InvalidInput(a.reference + ": has no faces");
+  TriangleDistanceTree tree;  // once for every level
+  tree.Build(ref.positions, tris);
+  *range = 0.0f;
+  stats->assign(surfaces->size(), std::string());
+  for (std::size_t k = 0; k < surfaces->size(); ++k) {
+    DistanceMap(tree, &(*surfaces)[k]);
+    *range = std::max(*range, ErrorRange((*surfaces)[k]));
+    double sum = 0.0, worst = 0.0;
+    std::size_t n = 0;
+    for (const render::Mesh& m : (*surfaces)[k]) {
+      for (float e : m.scalar) {
+        sum += e;
+        worst = std::max(worst, static_cast<double>(e));
+        ++n;
+      }
+    }
+    char line[160];
+    std::snprintf(line, sizeof(line), "mean %.3g max %.3g", n ? sum / static_cast<double>(n) : 0.0,
+                  worst);
+    (*stats)[k] = line;
+  }
+  return Status::Ok();
+}
+
 // A version-1 surface (no pose): one view per displacement level of --series, or per turntable
 // angle. Returns an exit status.
 int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::View* view_out,
@@ -182,21 +241,9 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
   }
   // One surface per displacement level of --series (or the one --displacement-levels).
   std::vector<int> levels = {a.displacement_levels};
-  if (!a.series.empty()) {
-    levels.clear();
-    std::size_t at = 0;
-    while (at <= a.series.size()) {
-      const std::size_t comma = std::min(a.series.find(',', at), a.series.size());
-      const std::string item = a.series.substr(at, comma - at);
-      int L = -2;
-      const auto r = std::from_chars(item.data(), item.data() + item.size(), L);
-      if (r.ec != std::errc() || r.ptr != item.data() + item.size() || L < -1 || L > 16) {
-        return Usage(kCommand, "--series '" + a.series +
-                                   "' must list displacement levels -1..16, e.g. 0,2,4");
-      }
-      levels.push_back(L);
-      at = comma + 1;
-    }
+  if (!a.series.empty() && !ParseSeries(a.series, &levels)) {
+    return Usage(kCommand,
+                 "--series '" + a.series + "' must list displacement levels -1..16, e.g. 0,2,4");
   }
   std::vector<std::vector<render::Mesh>> surfaces(levels.size());
   for (std::size_t k = 0; k < levels.size(); ++k) {
@@ -205,40 +252,9 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
   }
   std::vector<std::string> stats(levels.size());
   if (error_map) {
-    PolygonMesh ref;
-    Index dropped = 0;
-    const Status s = ReadFitInput(a.reference, &ref, &dropped, &Importers());
-    if (!s.ok()) return Fail(kCommand, s);
-    std::vector<std::uint32_t> tris;
-    for (Index f = 0; f < ref.num_faces(); ++f) {
-      const Index* fv = ref.face_vertices.data() + ref.face_offsets[f];
-      for (Index k = 1; k + 1 < ref.face_size(f); ++k) {
-        tris.insert(tris.end(),
-                    {static_cast<std::uint32_t>(fv[0]), static_cast<std::uint32_t>(fv[k]),
-                     static_cast<std::uint32_t>(fv[k + 1])});
-      }
-    }
-    if (tris.empty()) return Fail(kCommand, Status::InvalidInput(a.reference + ": has no faces"));
-    TriangleDistanceTree tree;  // once for every level
-    tree.Build(ref.positions, tris);
     float range = 0.0f;
-    for (std::size_t k = 0; k < levels.size(); ++k) {
-      DistanceMap(tree, &surfaces[k]);
-      range = std::max(range, ErrorRange(surfaces[k]));
-      double sum = 0.0, worst = 0.0;
-      std::size_t n = 0;
-      for (const render::Mesh& m : surfaces[k]) {
-        for (float e : m.scalar) {
-          sum += e;
-          worst = std::max(worst, static_cast<double>(e));
-          ++n;
-        }
-      }
-      char line[160];
-      std::snprintf(line, sizeof(line), "mean %.3g max %.3g",
-                    n ? sum / static_cast<double>(n) : 0.0, worst);
-      stats[k] = line;
-    }
+    const Status s = ErrorMaps(a, &surfaces, &stats, &range);
+    if (!s.ok()) return Fail(kCommand, s);
     view.show_legend = true;
     view.scalar_max = range;  // one scale for every level
     view.legend = "distance to data";
