@@ -48,12 +48,12 @@ endforeach()
 # module see that module, what it is built on, and the offline stage that builds their fixtures,
 # through the test support of that stage. A test that needs more must say so here and there.
 set(test_rules
-  "core|dermis/core/|support/(meshes|temp_files)\\.h"
+  "core|dermis/core/|support/(meshes|random|temp_files)\\.h"
   "deform|dermis/(core|deform)/"
   "asset|dermis/(core|asset)/"
-  "surface|dermis/(core|surface)/|dermis/offline/(geometry|build|io)/|support/(domains|meshes)\\.h"
-  "dsurf|dermis/(core|surface|dsurf|runtime|asset)/|support/(characters|temp_files)\\.h"
-  "runtime|dermis/(core|surface|dsurf|runtime|deform|asset)/|dermis/dermis\\.h|dermis/offline/character/|support/(characters|domains)\\.h")
+  "surface|dermis/(core|surface)/|dermis/offline/(geometry|build|io)/|support/(domains|meshes|random|wavy_displacement)\\.h"
+  "dsurf|dermis/(core|surface|dsurf|runtime|asset)/|support/(fixtures|temp_files)\\.h"
+  "runtime|dermis/(core|surface|dsurf|runtime|deform|asset)/|dermis/dermis\\.h|support/(fixtures|random|wavy_displacement)\\.h")
 foreach(rule ${test_rules})
   string(FIND "${rule}" "|" bar)
   string(SUBSTRING "${rule}" 0 ${bar} folder)

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "dermis/runtime/character.h"
+#include "support/fixtures.h"
 #include "support/temp_files.h"
-#include "support/characters.h"
 
 using namespace dermis;
 
@@ -43,7 +43,7 @@ std::string SurfaceBytes(const CharacterPart& part) {
 }  // namespace
 
 TEST_CASE("dsurf: one reader for surfaces and characters") {
-  const Character& fitted = test::FittedCylinders();
+  const Character& fitted = test::CylindersFixture();
   REQUIRE(fitted.parts.size() == 2);
   REQUIRE(fitted.parts[0].surface.displacement != nullptr);
   const std::string surface = SurfaceBytes(fitted.parts[0]);
@@ -81,7 +81,7 @@ TEST_CASE("dsurf: one reader for surfaces and characters") {
 }
 
 TEST_CASE("dsurf: the container of every version") {
-  const Character& fitted = test::FittedCylinders();
+  const Character& fitted = test::CylindersFixture();
   for (const std::string& bytes : {SurfaceBytes(fitted.parts[0]), SerializeCharacter(fitted)}) {
     const std::uint32_t file_version = DsurfFileVersion(bytes);
     INFO("version " << file_version);
@@ -121,7 +121,7 @@ TEST_CASE("dsurf: the container of every version") {
 }
 
 TEST_CASE("dsurf: a file is read once, its bytes handed back") {
-  const Character& fitted = test::FittedCylinders();
+  const Character& fitted = test::CylindersFixture();
   test::TempDir dir("dermis_dsurf");
   const std::string surface = SurfaceBytes(fitted.parts[1]);
   test::WriteFile(dir.File("part.dsurf"), surface);

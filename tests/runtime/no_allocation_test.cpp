@@ -12,7 +12,7 @@
 
 #include "dermis/dermis.h"
 #include "dermis/runtime/runtime.h"
-#include "support/characters.h"
+#include "support/fixtures.h"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -46,7 +46,7 @@ void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 namespace dermis {
 
 TEST_CASE("runtime: per-frame calls do not allocate") {
-  const std::string bytes = SerializeCharacter(test::FittedCylinders());
+  const std::string bytes = test::FixtureBytes("cylinders.dsurf");
   std::unique_ptr<RuntimeCharacter> rc;
   REQUIRE(RuntimeCharacter::FromBytes(bytes, "cylinders.dsurf", &rc).ok());
   std::vector<float> palette(32, 0.0f);

@@ -1,7 +1,9 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The engine runtime: the precomputed fast path against the scalar reference evaluator
 // (EvaluateSurface, double precision), independence of block splits, threads and instruction
-// sets, and the character jobs against the offline poser.
+// sets, the jobs' refusal of bad input. Runtime only: the domains and the fitted character are
+// fixtures (support/fixtures.h); the jobs against the offline poser are in
+// tests/regression/runtime_vs_poser_test.cpp.
 #include "dermis/runtime/runtime.h"
 
 #include <catch2/catch.hpp>
@@ -10,13 +12,12 @@
 #include <string>
 #include <thread>
 
-#include "dermis/asset/asset_pose.h"
-#include "dermis/offline/character/character_fit.h"
-#include "dermis/offline/character/character_pose.h"
 #include "dermis/runtime/evaluation_plan.h"
 #include "dermis/surface/surface_evaluator.h"
-#include "support/characters.h"
-#include "support/domains.h"
+#include "dermis/surface/tessellation.h"
+#include "support/fixtures.h"
+#include "support/random.h"
+#include "support/wavy_displacement.h"
 
 namespace dermis {
 namespace {
@@ -91,8 +92,8 @@ TEST_CASE("runtime: the fast path equals the scalar reference") {
   // Extraordinary vertices (valence 3, 5, 7), boundaries, a moved control mesh, a smooth
   // displacement that differs per chart, and the domain surface without displacement.
   for (const char* name : {"house", "prism7", "torus"}) {
-    ControlSurface cs = test::Build(test::Builtin(name));
-    std::vector<Vec3> moved = cs.control.positions;
+    const DisplacedSurface cs = test::SurfaceFixture(name);
+    std::vector<Vec3> moved = cs.rest_positions;
     test::Lcg rng(3);
     for (Vec3& p : moved) p += Vec3(rng.Uniform(-0.05, 0.05), rng.Uniform(-0.05, 0.05), 0.0);
     std::vector<LocalPatch> patches(moved.size());
@@ -113,7 +114,9 @@ TEST_CASE("runtime: the fast path equals the scalar reference") {
 }
 
 TEST_CASE("runtime: results do not depend on threads, block splits or the plan's threads") {
-  ControlSurface cs = test::Build(test::Builtin("house"));
+  const DisplacedSurface cs = test::SurfaceFixture("house");
+  std::vector<LocalPatch> rest_patches(cs.rest_positions.size());
+  cs.domain->FitPatches(cs.rest_positions.data(), rest_patches.data());
   const test::WavyDisplacement wavy(0.04);
   const std::vector<SampleLocation> samples = TestSamples(*cs.domain);
   EvaluationPlan plans[2];
@@ -127,8 +130,8 @@ TEST_CASE("runtime: results do not depend on threads, block splits or the plan's
   CHECK(std::memcmp(plans[0].block_data(), plans[1].block_data(),
                     plans[0].num_blocks() * kPlanBlockFloats * sizeof(float)) == 0);
   CHECK(plans[0].num_samples() == samples.size());
-  std::vector<float> packed(cs.patches.size() * kPackedPatchStride);
-  PackPatches(cs.patches.data(), cs.patches.size(), packed.data());
+  std::vector<float> packed(rest_patches.size() * kPackedPatchStride);
+  PackPatches(rest_patches.data(), rest_patches.size(), packed.data());
   // Interleaved output (position, normal, 2 floats of something else: stride 32 bytes).
   const std::size_t n = samples.size();
   std::vector<float> whole(8 * n, -7.0f), split(8 * n, -7.0f);
@@ -189,87 +192,8 @@ TEST_CASE("runtime: results do not depend on threads, block splits or the plan's
   CHECK_FALSE(EvaluationPlan::Build(*cs.domain, &wavy, wrong.data(), wrong.size(), {}, &p).ok());
 }
 
-TEST_CASE("runtime: character jobs match the offline poser") {
-  const Character& ch = test::FittedCylinders();
-  std::unique_ptr<RuntimeCharacter> rc;
-  // Through the file format, as an engine loads it.
-  REQUIRE(RuntimeCharacter::FromBytes(SerializeCharacter(ch), "cylinders.dsurf", &rc).ok());
-  REQUIRE(rc->num_parts() == ch.parts.size());
-  REQUIRE(rc->num_parts() == 2);
-  for (DeformerKind kind : {DeformerKind::kLbs, DeformerKind::kDqs, DeformerKind::kSweep}) {
-    CharacterPoseOptions po;
-    po.deformer = kind;
-    CharacterPoser poser;
-    REQUIRE(CharacterPoser::Build(ch, po, &poser).ok());
-    std::unique_ptr<RuntimeInstance> inst;
-    REQUIRE(RuntimeInstance::Create(*rc, kind, &inst).ok());
-    AssetPose pose;
-    RestPose(poser.asset(), &pose);
-    for (int step = 0; step <= 6; ++step) {
-      // j1 (node 2) bends about z and twists about its bone, step by step (sweep history).
-      pose.local[2].rotation = glm::angleAxis(0.25 * step, glm::dvec3(0, 0, 1)) *
-                               glm::angleAxis(0.2 * step, glm::dvec3(0, 1, 0));
-      REQUIRE(poser.SetPose(pose).ok());
-      std::vector<glm::dmat4> world, joints;
-      ComputeWorldMatrices(poser.asset(), pose, &world);
-      ComputeJointMatrices(poser.asset().skins[0], world, &joints);
-      std::vector<float> palette(16 * joints.size());
-      for (std::size_t j = 0; j < joints.size(); ++j) {
-        for (int c = 0; c < 4; ++c) {
-          for (int r = 0; r < 4; ++r)
-            palette[16 * j + 4 * c + r] = static_cast<float>(joints[j][c][r]);
-        }
-      }
-      for (std::size_t p = 0; p < rc->num_parts(); ++p) {
-        PoseJob job;
-        job.instance = inst.get();
-        job.part = p;
-        job.skin_matrices = palette.data();
-        job.num_skin_matrices = joints.size();
-        REQUIRE(job.Run());
-      }
-    }
-    std::vector<PosedPrimitive> posed;
-    REQUIRE(poser.Evaluate(&posed).ok());
-    for (std::size_t p = 0; p < rc->num_parts(); ++p) {
-      OutputSpec spec;
-      spec.kind = OutputKind::kBound;
-      std::unique_ptr<RuntimeOutput> out;
-      REQUIRE(RuntimeOutput::Build(*rc, p, spec, &out).ok());
-      const std::vector<BoundVertexRef>& refs = rc->bound_vertices(p);
-      REQUIRE(out->num_vertices() == refs.size());
-      REQUIRE(!refs.empty());
-      std::vector<float> pos(3 * refs.size()), nrm(3 * refs.size());
-      EvaluateJob ej;
-      ej.output = out.get();
-      ej.instance = inst.get();
-      ej.buffers.positions = pos.data();
-      ej.buffers.normals = nrm.data();
-      REQUIRE(ej.Run());
-      double worst = 0.0, worst_n = 0.0;
-      for (std::size_t i = 0; i < refs.size(); ++i) {
-        // The mesh is drawn by one node (the poser's drawn primitive of the same mesh).
-        std::size_t d = 0;
-        while (poser.drawn()[d].mesh != refs[i].mesh ||
-               poser.drawn()[d].primitive != refs[i].primitive)
-          ++d;
-        const Vec3 want = posed[d].positions[static_cast<std::size_t>(refs[i].vertex)];
-        const Vec3 want_n = posed[d].normals[static_cast<std::size_t>(refs[i].vertex)];
-        worst =
-            std::max(worst, glm::length(Vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]) - want));
-        worst_n = std::max(worst_n,
-                           glm::length(Vec3(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]) - want_n));
-      }
-      INFO(DeformerName(kind) << " part " << p << ": position " << worst << " normal " << worst_n);
-      // Model units: the capsules are 3 long; float palettes and float evaluation.
-      CHECK(worst < 3e-5);
-      CHECK(worst_n < 1e-4);
-    }
-  }
-}
-
 TEST_CASE("runtime: jobs refuse bad input and loading names the file") {
-  const Character& ch = test::FittedCylinders();
+  const Character& ch = test::CylindersFixture();
   std::unique_ptr<RuntimeCharacter> rc, other;
   REQUIRE(RuntimeCharacter::FromBytes(SerializeCharacter(ch), "a.dsurf", &rc).ok());
   REQUIRE(RuntimeCharacter::FromBytes(SerializeCharacter(ch), "b.dsurf", &other).ok());

@@ -1,22 +1,12 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Test support: a small skinned character (two capsules and a lone triangle on two joints) as
-// an asset, and fitted once. Links dermis::offline_character.
+// Test support: the two-capsule character (support/two_cylinders.h) fitted in the test
+// process. Links dermis::offline_character.
 #pragma once
 
-#include "dermis/asset/asset.h"
 #include "dermis/runtime/character.h"
+#include "support/two_cylinders.h"
 
 namespace dermis::test {
-
-/// Appends a closed capsule to `prim` (which must have one JOINTS/WEIGHTS set and one TEXCOORD
-/// set): a cylinder along y in [0, 2] with hemispherical caps, radius 0.5, whose side and caps
-/// have their own vertices (split at the junctions, as UV seams do), skinned to joints 0 and 1
-/// with smoothstep weights over y in [0.7, 1.3]. Placed at x0 along x.
-void AddCylinder(double x0, AssetPrimitive* prim);
-
-/// Two capsules (two components) and a lone triangle (too small to fit) in one mesh drawn by a
-/// skinned node; skeleton root -> j0 (at the origin) -> j1 (at y = 1), both joints of the skin.
-Asset TwoCylinders();
 
 /// TwoCylinders() fitted once with the default character options (2 threads), shared by the
 /// tests of one executable.

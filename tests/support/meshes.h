@@ -1,12 +1,13 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Test support: polygon meshes (fans, the built-in meshes of the geometry stage) and
-// deterministic random numbers. Links dermis::offline_geometry.
+// (support/random.h) deterministic random numbers. Links dermis::offline_geometry.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
 #include "dermis/asset/polygon_mesh.h"
+#include "support/random.h"
 
 namespace dermis::test {
 
@@ -19,19 +20,5 @@ void Perturb(PolygonMesh* mesh, double amount, std::uint32_t seed);
 
 /// A built-in mesh, failing the test if it cannot be made.
 PolygonMesh Builtin(const std::string& name);
-
-/// Deterministic uniform numbers in [0, 1).
-class Lcg {
- public:
-  explicit Lcg(std::uint64_t seed) : state_(seed * 2862933555777941757ULL + 3037000493ULL) {}
-  double Next() {
-    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state_ >> 11) * (1.0 / 9007199254740992.0);
-  }
-  double Uniform(double lo, double hi) { return lo + (hi - lo) * Next(); }
-
- private:
-  std::uint64_t state_;
-};
 
 }  // namespace dermis::test
