@@ -66,9 +66,11 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::OnValidation(
     VkDebugUtilsMessageSeverityFlagBitsEXT /*severity*/, VkDebugUtilsMessageTypeFlagsEXT /*types*/,
     const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
   Context* c = static_cast<Context*>(user);
+  const char* message = data && data->pMessage ? data->pMessage : "(no message)";
   std::lock_guard<std::mutex> lock(ValidationMutex());
   ++c->validation_messages_;
-  c->last_validation_message_ = data && data->pMessage ? data->pMessage : "(no message)";
+  c->last_validation_message_ = message;
+  if (c->validation_callback_) c->validation_callback_(message, c->validation_user_);
   return VK_FALSE;
 }
 
@@ -110,6 +112,8 @@ Context::~Context() {
 Status Context::Create(const ContextOptions& options, std::unique_ptr<Context>* out) {
   if (!out) return Status::InvalidInput("gpu::Context::Create: no output");
   std::unique_ptr<Context> c(new Context());
+  c->validation_callback_ = options.validation_callback;
+  c->validation_user_ = options.validation_user;
 
   // Instance: Vulkan 1.0, portability enumeration where the loader offers it (MoltenVK), the
   // validation layer and debug utils when asked for and installed.
@@ -126,6 +130,10 @@ Status Context::Create(const ContextOptions& options, std::unique_ptr<Context>* 
   if (HasInstanceExtension(extensions, VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME)) {
     enabled.push_back(VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME);
     flags |= VK_INSTANCE_CREATE_ENUMERATE_PORTABILITY_BIT_KHR;
+    // A portability device's VK_KHR_portability_subset requires this one.
+    if (HasInstanceExtension(extensions, VK_KHR_GET_PHYSICAL_DEVICE_PROPERTIES_2_EXTENSION_NAME)) {
+      enabled.push_back(VK_KHR_GET_PHYSICAL_DEVICE_PROPERTIES_2_EXTENSION_NAME);
+    }
   }
 #endif
   std::vector<const char*> layers;
@@ -358,7 +366,9 @@ Status Context::CreatePipeline() {
   return Status::Ok();
 }
 
-Status Context::Submit(const std::function<void(VkCommandBuffer)>& record, double* device_seconds) {
+Status Context::SubmitRecorded(void (*record)(VkCommandBuffer, void*), void* user,
+                               double* device_seconds) {
+  if (!record) return Status::InvalidInput("gpu::Context::Submit: nothing to record");
   if (device_seconds) *device_seconds = -1.0;
   const bool timed = device_seconds && query_pool_ != VK_NULL_HANDLE;
   DERMIS_VK(vkResetCommandBuffer(command_buffer_, 0));
@@ -370,7 +380,7 @@ Status Context::Submit(const std::function<void(VkCommandBuffer)>& record, doubl
     vkCmdResetQueryPool(command_buffer_, query_pool_, 0, 2);
     vkCmdWriteTimestamp(command_buffer_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, query_pool_, 0);
   }
-  record(command_buffer_);
+  record(command_buffer_, user);
   if (timed) {
     vkCmdWriteTimestamp(command_buffer_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, query_pool_, 1);
   }

@@ -20,9 +20,9 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "dermis/core/status.h"
@@ -41,6 +41,11 @@ struct ContextOptions {
   /// Enables VK_LAYER_KHRONOS_validation (Debian `vulkan-validationlayers`) when it is
   /// installed, and counts its warnings and errors (validation_messages()).
   bool validation = false;
+  /// Optional: called with each validation warning or error and `validation_user`, from any
+  /// thread, also while the context is destroyed (where the layer reports objects never
+  /// destroyed).
+  void (*validation_callback)(const char* message, void* user) = nullptr;
+  void* validation_user = nullptr;
 };
 
 /// A Vulkan instance, device and compute queue, and the evaluation pipeline.
@@ -81,11 +86,17 @@ class Context {
   /// Whether Submit() can time the device work (timestamps on the queue).
   bool has_timestamps() const { return timestamp_period_ns_ > 0.0; }
 
-  /// Records `record` into the context's command buffer, submits it to the queue and waits.
-  /// With `device_seconds`, also measures the device time of the recorded commands by
-  /// timestamps (-1 when has_timestamps() is false). Not for concurrent use.
-  Status Submit(const std::function<void(VkCommandBuffer)>& record,
-                double* device_seconds = nullptr);
+  /// Records `record(cmd)` into the context's command buffer, submits it to the queue and
+  /// waits. With `device_seconds`, also measures the device time of the recorded commands by
+  /// timestamps (-1 when has_timestamps() is false). Not for concurrent use; no allocation.
+  template <class Record>
+  Status Submit(Record&& record, double* device_seconds = nullptr) {
+    using R = std::remove_reference_t<Record>;
+    return SubmitRecorded([](VkCommandBuffer cmd, void* user) { (*static_cast<R*>(user))(cmd); },
+                          const_cast<void*>(static_cast<const void*>(&record)), device_seconds);
+  }
+  /// The same with a plain callback and its argument.
+  Status SubmitRecorded(void (*record)(VkCommandBuffer, void*), void* user, double* device_seconds);
 
   /// Index of a memory type with the `required` property flags among `type_bits`, preferring
   /// one that also has `preferred`; -1 if none.
@@ -122,6 +133,8 @@ class Context {
   std::uint32_t workgroup_size_ = kDefaultWorkgroupSize;
   std::size_t validation_messages_ = 0;
   std::string last_validation_message_;
+  void (*validation_callback_)(const char*, void*) = nullptr;
+  void* validation_user_ = nullptr;
 };
 
 /// Where a buffer's memory lives.
