@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "dermis/gpu/gpu.h"
-#include "dermis/offline/builtin_meshes.h"
-#include "dermis/offline/domain_builder.h"
+#include "dermis/offline/build/domain_builder.h"
+#include "dermis/offline/geometry/builtin_meshes.h"
 
 int main() {
   std::size_t words = 0;
