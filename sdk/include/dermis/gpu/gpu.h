@@ -221,7 +221,7 @@ class Patches {
   Patches& operator=(const Patches&) = delete;
   static Status Create(Context& context, std::size_t num_control_vertices, std::uint32_t slots,
                        std::unique_ptr<Patches>* out);
-  /// Copies num_control_vertices() * kPackedPatchFloats floats into slot `slot`. The slot
+  /// Copies num_control_vertices() * kPackedPatchStride floats into slot `slot`. The slot
   /// must not be in use by the device. Returns false (copying nothing) on a bad slot or null.
   bool Write(std::uint32_t slot, const float* packed);
   /// Copies part `part`'s current packed patches of `instance` (after its PoseJob).
@@ -315,7 +315,7 @@ class ReadbackEvaluator {
   /// EvaluatePlan() does. With `device_seconds`, the device time of the dispatches alone.
   Status Run(const RuntimeInstance& instance, const PlanOutputBuffers& out,
              double* device_seconds = nullptr);
-  /// The same from packed patches (num_control_vertices() * kPackedPatchFloats floats).
+  /// The same from packed patches (num_control_vertices() * kPackedPatchStride floats).
   Status Run(const float* packed_patches, const PlanOutputBuffers& out,
              double* device_seconds = nullptr);
   /// Only the dispatches (no readback); with `device_seconds` as in Run().

@@ -19,7 +19,7 @@ namespace gpu {
 enum Binding : std::uint32_t {
   kBindingPlanBlocks = 0,  ///< PlanBlock[] of the plan (read).
   kBindingPlanData = 1,    ///< The plan's block floats, kPlanBlockFloats per block (read).
-  kBindingPatches = 2,     ///< Packed patches, kPackedPatchFloats per control vertex (read).
+  kBindingPatches = 2,     ///< Packed patches, kPackedPatchStride per control vertex (read).
   kBindingPositions = 3,   ///< The positions' vertex buffer (written: 3 floats per vertex).
   kBindingNormals = 4,     ///< The normals' vertex buffer (written when normal_stride != 0).
   kBindingCount = 5
@@ -52,7 +52,7 @@ static_assert(kPlanBlockBytes == 4 * (4 + 2 * kPlanLanes + 2), "PlanBlock has pa
 /// Bytes of one block's floats in binding 1.
 constexpr std::size_t kPlanBlockDataBytes = kPlanBlockFloats * sizeof(float);
 /// Bytes of one control vertex's packed patch in binding 2.
-constexpr std::size_t kPackedPatchBytes = kPackedPatchFloats * sizeof(float);
+constexpr std::size_t kPackedPatchBytes = kPackedPatchStride * sizeof(float);
 
 /// Workgroups that evaluate `blocks` plan blocks: one invocation per lane of every block.
 constexpr std::uint64_t WorkgroupCount(std::uint64_t blocks,
