@@ -12,10 +12,15 @@
 //     1 and 2.
 //  2. A full frame of CesiumMan (pose -> sweep -> refit -> evaluate) for the bound vertices and
 //     at tessellation levels 4 and 8, one thread and two.
+//  Both tables have a GPU column when the build has dermis::gpu and the machine a Vulkan device
+//  (the device is named): the same plan evaluated by the compute shader (docs/gpu.md), timed by
+//  the device's timestamps around the dispatches (patch upload and pose excluded, as for the
+//  CPU columns; the frame table adds the CPU pose).
 //
 // Prints a table and, with --json FILE, writes the same figures as JSON. Asserts nothing. Exit
 // status 77 when the shared data is absent.
 // Usage (from the repo root): bench_runtime [--data DIR] [--json FILE] [--quick]
+//                                           [--gpu-device N | --no-gpu]
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
@@ -27,6 +32,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -44,6 +50,9 @@
 #include "dermis/runtime/evaluation_plan.h"
 #include "dermis/runtime/runtime.h"
 #include "dermis/surface/surface_evaluator.h"
+#if defined(DERMIS_BENCH_GPU)
+#include "dermis/gpu/gpu.h"
+#endif
 
 using namespace dermis;
 namespace Far = OpenSubdiv::Far;
@@ -83,6 +92,7 @@ struct Row {
   double osd_far = 0.0;          // Far::LimitStencilTable::UpdateValues + UpdateDerivs
   double lbs = 0.0;              // float LBS, 4 influences, positions + normals
   double scalar = 0.0;           // EvaluateSamples (double, reference), 1 thread, 0 if not run
+  double gpu = 0.0;              // the compute shader's device time, 0 if not run
   double osd_stencil_cvs = 0.0;  // mean control vertices per OSD stencil
   std::size_t dermis_bytes = 0, osd_bytes = 0;
 };
@@ -93,6 +103,7 @@ struct FrameRow {
   int threads = 1;
   double pose = 0.0;      // PoseJob over every part (deform + refit + pack)
   double evaluate = 0.0;  // EvaluateJob over every part
+  double gpu = 0.0;       // the compute shader's device time over every part, 0 if not run
 };
 
 // A float LBS baseline of n vertices: 4 influences each from `joints` joints, 3x4 matrices.
@@ -188,12 +199,52 @@ std::unique_ptr<Far::TopologyRefiner> MakeRefiner(const MeshTopology& topo) {
   return r;
 }
 
+#if defined(DERMIS_BENCH_GPU)
+// One plan on the device: uploaded once, its patches written, the dispatches timed by the
+// device's timestamps (median of `trials`, after one warm-up); 0 if anything fails.
+double GpuSecondsPerCall(gpu::Context& ctx, const EvaluationPlan& plan, const float* packed,
+                         int trials) {
+  std::unique_ptr<gpu::Output> out;
+  std::unique_ptr<gpu::Patches> patches;
+  std::unique_ptr<gpu::Buffer> vertices;
+  std::unique_ptr<gpu::Evaluation> eval;
+  Status s = gpu::Output::Upload(ctx, plan, {}, &out);
+  if (s.ok()) s = gpu::Patches::Create(ctx, plan.num_vertices(), 1, &patches);
+  if (s.ok()) {
+    s = gpu::Buffer::Create(ctx, std::max<std::size_t>(1, plan.num_samples()) * 24,
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                            gpu::MemoryUse::kDevice, &vertices);
+  }
+  if (s.ok()) {
+    gpu::Targets t;
+    t.positions = {vertices->handle(), 0, 24};
+    t.normals = {vertices->handle(), 12, 24};
+    s = gpu::Evaluation::Create(ctx, *out, *patches, t, &eval);
+  }
+  if (!s.ok()) {
+    std::fprintf(stderr, "bench_runtime: GPU: %s\n", s.message().c_str());
+    return 0.0;
+  }
+  patches->Write(0, packed);
+  std::vector<double> t;
+  for (int k = 0; k <= trials; ++k) {
+    double seconds = -1.0;
+    s = ctx.Submit([&](VkCommandBuffer cmd) { eval->Record(cmd, 0); }, &seconds);
+    if (!s.ok() || seconds < 0.0) return 0.0;
+    if (k > 0) t.push_back(seconds);  // the first one warms up
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string data = "../shared/data";
   std::string json_path;
-  bool quick = false;
+  bool quick = false, use_gpu = true;
+  int gpu_device = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--data" && i + 1 < argc) {
@@ -202,8 +253,14 @@ int main(int argc, char** argv) {
       json_path = argv[++i];
     } else if (a == "--quick") {
       quick = true;
+    } else if (a == "--gpu-device" && i + 1 < argc) {
+      gpu_device = std::atoi(argv[++i]);
+    } else if (a == "--no-gpu") {
+      use_gpu = false;
     } else {
-      std::fprintf(stderr, "usage: bench_runtime [--data DIR] [--json FILE] [--quick]\n");
+      std::fprintf(stderr,
+                   "usage: bench_runtime [--data DIR] [--json FILE] [--quick] "
+                   "[--gpu-device N | --no-gpu]\n");
       return 2;
     }
   }
@@ -218,6 +275,29 @@ int main(int argc, char** argv) {
   }
   std::printf("# bench_runtime: kernel %s, %u hardware threads\n", SimdPathName(SimdPath::kAuto),
               std::thread::hardware_concurrency());
+  // The GPU column's device (the first of the best type, or --gpu-device).
+  std::string gpu_name = "none";
+#if defined(DERMIS_BENCH_GPU)
+  std::unique_ptr<gpu::Context> gpu_ctx;
+  if (use_gpu) {
+    gpu::ContextOptions go;
+    go.device_index = gpu_device;
+    const Status gs = gpu::Context::Create(go, &gpu_ctx);
+    if (!gs.ok()) {
+      gpu_name = "none (" + gs.message() + ")";
+    } else if (!gpu_ctx->has_timestamps()) {
+      gpu_name = "none (" + gpu_ctx->device_name() + " has no timestamps on its compute queue)";
+      gpu_ctx.reset();
+    } else {
+      gpu_name = gpu_ctx->device_name() + ", " + gpu_ctx->device_type();
+    }
+  }
+#else
+  (void)use_gpu;
+  (void)gpu_device;
+  gpu_name = "none (built without dermis::gpu)";
+#endif
+  std::printf("# GPU column: %s\n", gpu_name.c_str());
 
   // ---- Part 1: per-sample evaluation on the fitted bunny.
   PolygonMesh mesh;
@@ -354,6 +434,9 @@ int main(int argc, char** argv) {
             },
             trials, min_seconds);
       }
+#if defined(DERMIS_BENCH_GPU)
+      if (threads == 1 && gpu_ctx) r.gpu = GpuSecondsPerCall(*gpu_ctx, plan, packed.data(), trials);
+#endif
       if (threads == 1 && level <= 8) {
         std::vector<Vec3> rp(n), rn(n);
         r.scalar = TimePerCall(
@@ -373,21 +456,25 @@ int main(int argc, char** argv) {
   std::printf(
       "| level | samples | threads | Dermis M/s | OSD CpuEvaluator M/s | OSD Far M/s | "
       "ratio Dermis/OSD (time) | LBS M/s | Dermis generic kernel M/s | Dermis scalar M/s | "
-      "OSD CVs/stencil | Dermis MB | OSD MB "
-      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "Dermis GPU M/s | OSD CVs/stencil | Dermis MB | OSD MB "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows) {
     const double osd = std::min(r.osd_eval, r.osd_far);
     const double ms = static_cast<double>(r.samples) * 1e-6;
-    char scalar[32] = "-", generic[32] = "-";
+    char scalar[32] = "-", generic[32] = "-", gpu_col[32] = "-";
     if (r.scalar > 0) std::snprintf(scalar, sizeof(scalar), "%.2f", ms / r.scalar);
     if (r.generic > 0) std::snprintf(generic, sizeof(generic), "%.1f", ms / r.generic);
+    if (r.gpu > 0) std::snprintf(gpu_col, sizeof(gpu_col), "%.1f", ms / r.gpu);
     std::printf(
-        "| %d | %zu | %d | %.1f | %.1f | %.1f | %.3f | %.1f | %s | %s | %.1f | %.1f | %.1f |\n",
+        "| %d | %zu | %d | %.1f | %.1f | %.1f | %.3f | %.1f | %s | %s | %s | %.1f | %.1f | %.1f "
+        "|\n",
         r.level, r.samples, r.threads, ms / r.dermis, ms / r.osd_eval, ms / r.osd_far,
-        r.dermis / osd, ms / r.lbs, generic, scalar, r.osd_stencil_cvs,
+        r.dermis / osd, ms / r.lbs, generic, scalar, gpu_col, r.osd_stencil_cvs,
         static_cast<double>(r.dermis_bytes) / 1048576.0,
         static_cast<double>(r.osd_bytes) / 1048576.0);
   }
+  std::printf("\nDermis GPU: %s (device time of the dispatches, 1 row per level)\n",
+              gpu_name.c_str());
 
   // ---- Part 2: full frames of CesiumMan.
   Asset asset;
@@ -490,18 +577,37 @@ int main(int argc, char** argv) {
       };
       fr.pose = TimePerCall(pose, trials, min_seconds);
       fr.evaluate = TimePerCall(evaluate, trials, min_seconds);
+#if defined(DERMIS_BENCH_GPU)
+      if (threads == 1 && gpu_ctx) {
+        double sum = 0.0;
+        bool all = true;
+        for (std::size_t p = 0; p < outs.size(); ++p) {
+          const double g = GpuSecondsPerCall(*gpu_ctx, outs[p]->plan(),
+                                             inst->packed_patches(outs[p]->part()), trials);
+          all = all && g > 0.0;
+          sum += g;
+        }
+        fr.gpu = all ? sum : 0.0;
+      }
+#endif
       frames.push_back(fr);
     }
   }
   std::printf("\n## Full frame, CesiumMan (pose -> sweep -> refit -> evaluate)\n\n");
   std::printf(
       "| output | vertices | threads | pose + sweep + refit ms | evaluate ms | frame ms | "
-      "output M vertices/s |\n|---|---|---|---|---|---|---|\n");
+      "output M vertices/s | GPU evaluate ms | GPU frame ms (CPU pose + GPU) |\n"
+      "|---|---|---|---|---|---|---|---|---|\n");
   for (const FrameRow& f : frames) {
     const double total = f.pose + f.evaluate;
-    std::printf("| %s | %zu | %d | %.3f | %.3f | %.3f | %.1f |\n", f.output.c_str(), f.vertices,
-                f.threads, f.pose * 1e3, f.evaluate * 1e3, total * 1e3,
-                static_cast<double>(f.vertices) * 1e-6 / total);
+    char gpu_eval[32] = "-", gpu_frame[32] = "-";
+    if (f.gpu > 0) {
+      std::snprintf(gpu_eval, sizeof(gpu_eval), "%.3f", f.gpu * 1e3);
+      std::snprintf(gpu_frame, sizeof(gpu_frame), "%.3f", (f.pose + f.gpu) * 1e3);
+    }
+    std::printf("| %s | %zu | %d | %.3f | %.3f | %.3f | %.1f | %s | %s |\n", f.output.c_str(),
+                f.vertices, f.threads, f.pose * 1e3, f.evaluate * 1e3, total * 1e3,
+                static_cast<double>(f.vertices) * 1e-6 / total, gpu_eval, gpu_frame);
   }
 
   if (!json_path.empty()) {
@@ -510,18 +616,26 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "bench_runtime: cannot write %s\n", json_path.c_str());
       return 1;
     }
-    std::fprintf(j, "{\n  \"version\": 1,\n  \"kernel\": \"%s\",\n  \"per_sample\": [\n",
-                 SimdPathName(SimdPath::kAuto));
+    std::string gpu_json;  // the device name as a JSON string
+    for (char ch : gpu_name) {
+      if (ch == '"' || ch == '\\') gpu_json += '\\';
+      if (static_cast<unsigned char>(ch) >= 0x20) gpu_json += ch;
+    }
+    std::fprintf(j,
+                 "{\n  \"version\": 1,\n  \"kernel\": \"%s\",\n  \"gpu_device\": \"%s\",\n"
+                 "  \"per_sample\": [\n",
+                 SimdPathName(SimdPath::kAuto), gpu_json.c_str());
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const Row& r = rows[i];
       std::fprintf(j,
                    "    {\"level\": %d, \"samples\": %zu, \"threads\": %d, \"dermis_s\": %.9g, "
                    "\"osd_cpu_evaluator_s\": %.9g, \"osd_far_s\": %.9g, \"lbs_s\": %.9g, "
-                   "\"dermis_generic_s\": %.9g, \"dermis_scalar_s\": %.9g, \"ratio\": %.6f, "
+                   "\"dermis_generic_s\": %.9g, \"dermis_scalar_s\": %.9g, \"gpu_s\": %.9g, "
+                   "\"ratio\": %.6f, "
                    "\"osd_cvs_per_stencil\": %.3f, "
                    "\"dermis_bytes\": %zu, \"osd_bytes\": %zu}%s\n",
                    r.level, r.samples, r.threads, r.dermis, r.osd_eval, r.osd_far, r.lbs, r.generic,
-                   r.scalar, r.dermis / std::min(r.osd_eval, r.osd_far), r.osd_stencil_cvs,
+                   r.scalar, r.gpu, r.dermis / std::min(r.osd_eval, r.osd_far), r.osd_stencil_cvs,
                    r.dermis_bytes, r.osd_bytes, i + 1 < rows.size() ? "," : "");
     }
     std::fprintf(j, "  ],\n  \"frames\": [\n");
@@ -529,8 +643,8 @@ int main(int argc, char** argv) {
       const FrameRow& f = frames[i];
       std::fprintf(j,
                    "    {\"output\": \"%s\", \"vertices\": %zu, \"threads\": %d, \"pose_s\": %.9g, "
-                   "\"evaluate_s\": %.9g, \"vertices_per_s\": %.6g}%s\n",
-                   f.output.c_str(), f.vertices, f.threads, f.pose, f.evaluate,
+                   "\"evaluate_s\": %.9g, \"gpu_evaluate_s\": %.9g, \"vertices_per_s\": %.6g}%s\n",
+                   f.output.c_str(), f.vertices, f.threads, f.pose, f.evaluate, f.gpu,
                    static_cast<double>(f.vertices) / (f.pose + f.evaluate),
                    i + 1 < frames.size() ? "," : "");
     }

@@ -1,8 +1,8 @@
 # `cmake --install`: headers, static libraries, the dermis tool, a CMake package
 # (find_package(dermis CONFIG) with dermis::core, dermis::runtime, dermis::deform, dermis::asset,
 # dermis::offline (its stages dermis::offline_geometry, _io, _build, _fit, _character),
-# dermis::gltf, dermis::assimp, dermis::plugins), its version file, and a
-# pkg-config file for the runtime (dermis-runtime.pc: core + runtime + deform, GLM only).
+# dermis::gltf, dermis::assimp, dermis::plugins, and dermis::gpu when built), its version file,
+# and a pkg-config file for the runtime (dermis-runtime.pc: core + runtime + deform, GLM only).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -10,6 +10,13 @@ set(dermis_install_targets dermis_core dermis_runtime dermis_deform dermis_asset
                            dermis_offline_geometry dermis_offline_io dermis_offline_build
                            dermis_offline_fit dermis_offline_character dermis_gltf
                            dermis_assimp dermis_plugins)
+if(TARGET dermis_gpu)
+  # The GPU evaluation: its library, and the shader as GLSL source and SPIR-V (docs/gpu.md).
+  list(APPEND dermis_install_targets dermis_gpu)
+  install(FILES ${PROJECT_SOURCE_DIR}/sdk/src/gpu/shaders/evaluate_plan.comp
+                ${PROJECT_BINARY_DIR}/sdk/shaders/evaluate_plan.spv
+          DESTINATION ${CMAKE_INSTALL_DATADIR}/dermis/shaders)
+endif()
 foreach(t ${dermis_install_targets})
   string(REPLACE "dermis_" "" short ${t})
   set_target_properties(${t} PROPERTIES EXPORT_NAME ${short})

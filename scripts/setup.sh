@@ -4,9 +4,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# The GPU evaluation (docs/gpu.md): the Vulkan loader and headers, glslc for the shaders, Mesa's
+# Vulkan drivers (lavapipe runs the shaders on the CPU where there is no GPU) and the Khronos
+# validation layer the tests run under.
 packages=(build-essential cmake libeigen3-dev libglm-dev catch2 libcli11-dev libmeshoptimizer-dev
           nlohmann-json3-dev libtinygltf-dev libassimp-dev pkg-config libosd-dev
-          libstb-dev)
+          libstb-dev libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers)
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -2,6 +2,7 @@
 /* engine_loop: the Dermis C API in a minimal frame loop, as an engine would use it.
  *
  *   engine_loop CHARACTER.dsurf [--frames N] [--level L] [--deformer lbs|dqs|sweep]
+ *                               [--gpu [DEVICE]]
  *
  * Once: load the character, create per part a tessellation output (level L) and a bound-vertex
  * output, create one instance. Per frame: build a joint palette (here a procedural wave that
@@ -9,6 +10,13 @@
  * pose every part, evaluate every output into interleaved vertex buffers (position + normal,
  * 24-byte stride). Prints per-frame timing and checks what it produced: finite positions, unit
  * normals, the rest frame unmoved, the posed frames moved. Exit status 0 when all checks hold.
+ *
+ * --gpu (builds with dermis::gpu, dermis/dermis_gpu.h): the evaluation runs on a Vulkan device
+ * (the best one, or index DEVICE) through the reference host, which waits and copies the
+ * vertices back; each frame is also evaluated on the CPU and the largest difference reported
+ * and checked (positions within 1e-5 of the bounding box). Exit status 77 when
+ * the machine has no Vulkan device. An engine that draws on the GPU dispatches the shader in
+ * its own command buffers instead (docs/gpu.md).
  */
 #include <math.h>
 #include <stdint.h>
@@ -18,6 +26,9 @@
 #include <time.h>
 
 #include "dermis/dermis.h"
+#ifdef DERMIS_ENGINE_LOOP_GPU
+#include "dermis/dermis_gpu.h"
+#endif
 
 /* Column-major 4x4 float matrices: m[4 * column + row]. */
 static void MatMul(const float* a, const float* b, float* out) {
@@ -110,7 +121,11 @@ static double Now(void) {
 
 typedef struct Part {
   dermis_output* outputs[2]; /* level, bound */
-  float* buffers[2];         /* 6 floats per vertex */
+#ifdef DERMIS_ENGINE_LOOP_GPU
+  dermis_gpu_output* gpu_outputs[2];
+  float* cpu_check[2]; /* the CPU's result, to compare with the GPU's */
+#endif
+  float* buffers[2]; /* 6 floats per vertex */
   float* rest[2];
   size_t vertices[2];
   Rig rig;
@@ -119,12 +134,46 @@ typedef struct Part {
   int* done;
 } Part;
 
+/* Largest |a - b| over positions (relative to the bounding-box diagonal of b) and normals of
+ * n interleaved vertices, and the count of normals that differ by more than 1e-4. */
+static void Difference(const float* a, const float* b, size_t n, double* position, double* normal,
+                       size_t* normals_over) {
+  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = fminf(lo[k], b[6 * i + k]);
+      hi[k] = fmaxf(hi[k], b[6 * i + k]);
+    }
+  }
+  double diag = 0.0;
+  for (int k = 0; k < 3; ++k) diag += (double)(hi[k] - lo[k]) * (double)(hi[k] - lo[k]);
+  diag = diag > 0.0 ? sqrt(diag) : 1.0;
+  for (size_t i = 0; i < n; ++i) {
+    double dp = 0.0, dn = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double p = (double)a[6 * i + k] - b[6 * i + k];
+      const double q = (double)a[6 * i + 3 + k] - b[6 * i + 3 + k];
+      dp += p * p;
+      dn += q * q;
+    }
+    if (!(sqrt(dp) / diag <= *position)) *position = sqrt(dp) / diag; /* NaN propagates */
+    if (!(sqrt(dn) <= *normal)) *normal = sqrt(dn);
+    if (!(sqrt(dn) <= 1e-4)) ++*normals_over;
+  }
+}
+
 int main(int argc, char** argv) {
   const char* path = NULL;
   int frames = 60, level = 6;
+  int use_gpu = 0, gpu_device = -1;
   dermis_deformer deformer = DERMIS_DEFORMER_SWEEP;
   for (int i = 1; i < argc; ++i) {
-    if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
+    if (!strcmp(argv[i], "--gpu")) {
+      use_gpu = 1;
+      if (i + 1 < argc && argv[i + 1][0] >= '0' && argv[i + 1][0] <= '9') {
+        gpu_device = atoi(argv[++i]);
+      }
+    } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
       frames = atoi(argv[++i]);
     } else if (!strcmp(argv[i], "--level") && i + 1 < argc) {
       level = atoi(argv[++i]);
@@ -138,16 +187,34 @@ int main(int argc, char** argv) {
     } else {
       fprintf(stderr,
               "usage: engine_loop CHARACTER.dsurf [--frames N] [--level L] "
-              "[--deformer lbs|dqs|sweep]\n");
+              "[--deformer lbs|dqs|sweep] [--gpu [DEVICE]]\n");
       return 2;
     }
   }
   if (!path || frames < 1) {
     fprintf(stderr,
             "usage: engine_loop CHARACTER.dsurf [--frames N] [--level L] "
-            "[--deformer lbs|dqs|sweep]\n");
+            "[--deformer lbs|dqs|sweep] [--gpu [DEVICE]]\n");
     return 2;
   }
+#ifndef DERMIS_ENGINE_LOOP_GPU
+  if (use_gpu) {
+    fprintf(stderr, "engine_loop: --gpu: this build has no GPU evaluation (DERMIS_BUILD_GPU)\n");
+    return 2;
+  }
+  (void)gpu_device;
+#else
+  dermis_gpu_context* gpu = NULL;
+  if (use_gpu) {
+    const dermis_status gs = dermis_gpu_context_create(gpu_device, &gpu);
+    if (gs == DERMIS_ERROR_UNSUPPORTED) {
+      printf("engine_loop: SKIPPED the GPU: %s\n", dermis_last_error());
+      return 77;
+    }
+    CHECK(gs);
+    printf("GPU: %s\n", dermis_gpu_device_name(gpu));
+  }
+#endif
   printf("dermis %s\n", dermis_version());
   dermis_character* character = NULL;
   CHECK(dermis_character_load(path, &character));
@@ -169,6 +236,14 @@ int main(int argc, char** argv) {
       part[p].buffers[o] = calloc(6 * n + 1, sizeof(float));
       part[p].rest[o] = calloc(6 * n + 1, sizeof(float));
       if (!part[p].buffers[o] || !part[p].rest[o]) return 1;
+#ifdef DERMIS_ENGINE_LOOP_GPU
+      if (gpu) {
+        /* Once: the output's plan to the device. */
+        CHECK(dermis_gpu_output_create(gpu, part[p].outputs[o], &part[p].gpu_outputs[o]));
+        part[p].cpu_check[o] = calloc(6 * n + 1, sizeof(float));
+        if (!part[p].cpu_check[o]) return 1;
+      }
+#endif
       total_vertices += n;
     }
     Rig* rig = &part[p].rig;
@@ -202,6 +277,8 @@ int main(int argc, char** argv) {
   CHECK(dermis_instance_create(character, deformer, &instance));
 
   double pose_time = 0.0, eval_time = 0.0, max_motion = 0.0;
+  double gpu_position = 0.0, gpu_normal = 0.0;
+  size_t gpu_normals_over = 0, gpu_compared = 0;
   int failures = 0;
   for (int f = 0; f <= frames; ++f) {
     const float t = 0.1f * (float)f;
@@ -226,10 +303,29 @@ int main(int argc, char** argv) {
     for (size_t p = 0; p < parts; ++p) {
       for (int o = 0; o < 2; ++o) {
         float* b = part[p].buffers[o];
+#ifdef DERMIS_ENGINE_LOOP_GPU
+        if (gpu) {
+          CHECK(dermis_gpu_evaluate(part[p].gpu_outputs[o], instance, b, 24, b + 3, 24));
+          continue;
+        }
+#endif
         CHECK(dermis_evaluate(instance, part[p].outputs[o], 0, SIZE_MAX, b, 24, b + 3, 24));
       }
     }
     double t2 = Now();
+#ifdef DERMIS_ENGINE_LOOP_GPU
+    if (gpu) {
+      for (size_t p = 0; p < parts; ++p) {
+        for (int o = 0; o < 2; ++o) {
+          float* c = part[p].cpu_check[o];
+          CHECK(dermis_evaluate(instance, part[p].outputs[o], 0, SIZE_MAX, c, 24, c + 3, 24));
+          Difference(part[p].buffers[o], c, part[p].vertices[o], &gpu_position, &gpu_normal,
+                     &gpu_normals_over);
+          gpu_compared += part[p].vertices[o];
+        }
+      }
+    }
+#endif
     if (f > 0) {
       pose_time += t1 - t0;
       eval_time += t2 - t1;
@@ -266,7 +362,12 @@ int main(int argc, char** argv) {
     }
     CHECK(dermis_instance_pose(instance, p, part[p].palette, rig->joints));
     float* b = part[p].buffers[1];
-    CHECK(dermis_evaluate(instance, part[p].outputs[1], 0, SIZE_MAX, b, 24, b + 3, 24));
+#ifdef DERMIS_ENGINE_LOOP_GPU
+    if (gpu) {
+      CHECK(dermis_gpu_evaluate(part[p].gpu_outputs[1], instance, b, 24, b + 3, 24));
+    } else
+#endif
+      CHECK(dermis_evaluate(instance, part[p].outputs[1], 0, SIZE_MAX, b, 24, b + 3, 24));
     for (size_t i = 0; i < 6 * part[p].vertices[1]; ++i) {
       const double d = fabs((double)(b[i] - part[p].rest[1][i]));
       if (d > rest_error) rest_error = d;
@@ -294,8 +395,26 @@ int main(int argc, char** argv) {
     fprintf(stderr, "engine_loop: the rest pose is not reproduced (%.3g)\n", rest_error);
     ++failures;
   }
+  if (use_gpu) {
+    /* Positions agree within float rounding. Normals can differ more where the surface is
+     * nearly degenerate: dermis_evaluate() runs the AVX2 kernel where the CPU has it, which
+     * fuses multiply-adds, while the shader repeats the portable kernel's rounding
+     * (docs/gpu.md, section 8; tests/gpu compares the two kernels separately). */
+    printf(
+        "GPU against the CPU: largest difference %.3g of the bounding box (positions), %.3g "
+        "(normals; %zu of %zu vertices over 1e-4)\n",
+        gpu_position, gpu_normal, gpu_normals_over, gpu_compared);
+    if (!(gpu_position < 1e-5)) {
+      fprintf(stderr, "engine_loop: the GPU's positions differ from the CPU's\n");
+      ++failures;
+    }
+  }
   for (size_t p = 0; p < parts; ++p) {
     for (int o = 0; o < 2; ++o) {
+#ifdef DERMIS_ENGINE_LOOP_GPU
+      dermis_gpu_output_destroy(part[p].gpu_outputs[o]);
+      free(part[p].cpu_check[o]);
+#endif
       dermis_output_destroy(part[p].outputs[o]);
       free(part[p].buffers[o]);
       free(part[p].rest[o]);
@@ -310,6 +429,9 @@ int main(int argc, char** argv) {
   free(part);
   dermis_instance_destroy(instance);
   dermis_character_destroy(character);
+#ifdef DERMIS_ENGINE_LOOP_GPU
+  dermis_gpu_context_destroy(gpu);
+#endif
   if (failures) {
     fprintf(stderr, "engine_loop: %d check(s) failed\n", failures);
     return 1;

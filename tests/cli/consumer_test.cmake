@@ -33,6 +33,25 @@ run(${WORK}/build/consumer)
 if(NOT run_output MATCHES "consumer ok")
   message(FATAL_ERROR "the consumer did not report success: ${run_output}")
 endif()
+# dermis::gpu (-DGPU=ON): its headers, the shader as GLSL and SPIR-V, and a consumer of the
+# exported target (Vulkan found through the package's config).
+if(GPU)
+  foreach(f include/dermis/gpu/gpu.h include/dermis/gpu/shader_interface.h
+            include/dermis/dermis_gpu.h share/dermis/shaders/evaluate_plan.comp
+            share/dermis/shaders/evaluate_plan.spv)
+    if(NOT EXISTS ${WORK}/prefix/${f})
+      message(FATAL_ERROR "the install has no ${f}")
+    endif()
+  endforeach()
+  if(NOT EXISTS ${WORK}/build/gpu_consumer)
+    message(FATAL_ERROR "find_package(dermis) did not provide dermis::gpu")
+  endif()
+  run(${WORK}/build/gpu_consumer)
+  if(NOT run_output MATCHES "gpu consumer ok")
+    message(FATAL_ERROR "the GPU consumer did not report success: ${run_output}")
+  endif()
+  message(STATUS "${run_output}")
+endif()
 
 # pkg-config: the runtime alone.
 file(GLOB_RECURSE pc_files ${WORK}/prefix/*/dermis-runtime.pc)

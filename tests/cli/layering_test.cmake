@@ -1,7 +1,8 @@
 cmake_policy(SET CMP0057 NEW)
 # Fails if runtime or core code includes offline headers, Eigen, or any plugin, or uses
 # exceptions. The surface, deform and core modules do not see the asset module either; the
-# runtime module (loading characters, jobs, C API) does: it is core + GLM only too.
+# runtime module (loading characters, jobs, C API) does: it is core + GLM only too. The GPU
+# module (dermis::gpu) follows the runtime's rules, with the Vulkan headers besides.
 file(GLOB_RECURSE files
      ${ROOT}/sdk/include/dermis/core/*.h ${ROOT}/sdk/include/dermis/surface/*.h
      ${ROOT}/sdk/include/dermis/deform/*.h ${ROOT}/sdk/src/core/*.cpp
@@ -9,7 +10,9 @@ file(GLOB_RECURSE files
      ${ROOT}/sdk/src/core/*.h)
 file(GLOB_RECURSE runtime_files ${ROOT}/sdk/include/dermis/runtime/*.h
      ${ROOT}/sdk/include/dermis/dermis.h ${ROOT}/sdk/src/runtime/*.cpp ${ROOT}/sdk/src/runtime/*.h
-     ${ROOT}/sdk/include/dermis/dsurf/*.h ${ROOT}/sdk/src/dsurf/*.cpp ${ROOT}/sdk/src/dsurf/*.h)
+     ${ROOT}/sdk/include/dermis/dsurf/*.h ${ROOT}/sdk/src/dsurf/*.cpp ${ROOT}/sdk/src/dsurf/*.h
+     ${ROOT}/sdk/include/dermis/gpu/*.h ${ROOT}/sdk/include/dermis/dermis_gpu.h
+     ${ROOT}/sdk/src/gpu/*.cpp ${ROOT}/sdk/src/gpu/*.h)
 foreach(f ${files} ${runtime_files})
   file(STRINGS ${f} includes REGEX "^#include")
   foreach(line ${includes})

@@ -105,6 +105,13 @@ const uint32_t* dermis_output_triangles(const dermis_output* output);
 /** Blocks of up to 8 vertices: the unit in which dermis_evaluate() splits work. */
 size_t dermis_output_block_count(const dermis_output* output);
 
+/** The output's precomputed evaluation plan, for engines that evaluate it on their own GPU
+ * (docs/gpu.md): `*blocks` receives the PlanBlock array (`*block_bytes` bytes, binding 0 of
+ * the shader), `*data` the block floats (`*data_bytes` bytes, binding 1). Owned by the output;
+ * constant for its lifetime. */
+dermis_status dermis_output_plan(const dermis_output* output, const void** blocks,
+                                 size_t* block_bytes, const float** data, size_t* data_bytes);
+
 /** A posed instance of a character (starts in the rest pose). */
 dermis_status dermis_instance_create(const dermis_character* character, dermis_deformer deformer,
                                      dermis_instance** out);
@@ -116,6 +123,11 @@ void dermis_instance_reset_history(dermis_instance* instance);
  * the patches. No allocation. */
 dermis_status dermis_instance_pose(dermis_instance* instance, size_t part,
                                    const float* skin_matrices, size_t count);
+/** The part's packed patches of the current pose (after dermis_instance_pose()): `*floats`
+ * = 32 per control vertex, the GPU shader's binding 2 (docs/gpu.md: what moves per frame).
+ * Owned by the instance; rewritten by the next dermis_instance_pose() of the part. */
+dermis_status dermis_instance_packed_patches(const dermis_instance* instance, size_t part,
+                                             const float** patches, size_t* floats);
 /** Evaluates blocks [block_begin, block_end) of `output` (block_end is clamped to the block
  * count; pass SIZE_MAX for all) with the instance's current pose: vertex i's position (3
  * floats) at positions + i * position_stride bytes, its unit normal at normals + i *

@@ -5,20 +5,16 @@
 
 #include "dermis/dermis.h"
 #include "dermis/runtime/runtime.h"
+#include "runtime/c_api_handles.h"
 
-struct dermis_character {
-  std::unique_ptr<dermis::RuntimeCharacter> impl;
-};
-struct dermis_output {
-  std::unique_ptr<dermis::RuntimeOutput> impl;
-};
-struct dermis_instance {
-  std::unique_ptr<dermis::RuntimeInstance> impl;
-};
+namespace dermis {
+namespace c_api {
 
 namespace {
-
 thread_local std::string g_last_error;
+}  // namespace
+
+const char* LastError() { return g_last_error.c_str(); }
 
 dermis_status Fail(dermis_status status, const std::string& message) {
   g_last_error = message;
@@ -39,6 +35,14 @@ dermis_status FromStatus(const dermis::Status& s) {
   }
 }
 
+}  // namespace c_api
+}  // namespace dermis
+
+namespace {
+
+using dermis::c_api::Fail;
+using dermis::c_api::FromStatus;
+
 bool PartOk(const dermis_character* c, size_t part) { return c && part < c->impl->num_parts(); }
 
 }  // namespace
@@ -47,7 +51,7 @@ extern "C" {
 
 const char* dermis_version(void) { return DERMIS_VERSION_STRING; }
 
-const char* dermis_last_error(void) { return g_last_error.c_str(); }
+const char* dermis_last_error(void) { return dermis::c_api::LastError(); }
 
 const char* dermis_status_string(dermis_status status) {
   switch (status) {
@@ -268,6 +272,32 @@ dermis_status dermis_evaluate(const dermis_instance* instance, const dermis_outp
                 "dermis_evaluate: invalid arguments (an output of another character, a block "
                 "range past the end, a null position buffer or a stride below 12 bytes)");
   }
+  return DERMIS_OK;
+}
+
+dermis_status dermis_output_plan(const dermis_output* o, const void** blocks, size_t* block_bytes,
+                                 const float** data, size_t* data_bytes) {
+  if (!o || !blocks || !block_bytes || !data || !data_bytes)
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_output_plan: null argument");
+  const dermis::EvaluationPlan& plan = o->impl->plan();
+  *blocks = plan.blocks();
+  *block_bytes = plan.num_blocks() * sizeof(dermis::PlanBlock);
+  *data = plan.block_data();
+  *data_bytes = plan.num_blocks() * dermis::kPlanBlockFloats * sizeof(float);
+  return DERMIS_OK;
+}
+
+dermis_status dermis_instance_packed_patches(const dermis_instance* instance, size_t part,
+                                             const float** patches, size_t* floats) {
+  if (!instance || !patches || !floats)
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_instance_packed_patches: null argument");
+  const dermis::RuntimeCharacter& c = instance->impl->character();
+  if (part >= c.num_parts()) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                "dermis_instance_packed_patches: part " + std::to_string(part) + " does not exist");
+  }
+  *patches = instance->impl->packed_patches(part);
+  *floats = c.num_control_vertices(part) * dermis::kPackedPatchStride;
   return DERMIS_OK;
 }
 
