@@ -40,9 +40,9 @@
 #include "dermis/asset/asset_pose.h"
 #include "dermis/asset/asset_validate.h"
 #include "dermis/deform/deformer.h"
-#include "dermis/offline/character_fit.h"
-#include "dermis/offline/character_pose.h"
-#include "dermis/offline/skin_transfer.h"
+#include "dermis/offline/character/character_fit.h"
+#include "dermis/offline/character/character_pose.h"
+#include "dermis/offline/character/skin_transfer.h"
 #include "dermis/plugins/gltf.h"
 #include "render/raster.h"
 

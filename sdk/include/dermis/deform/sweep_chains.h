@@ -46,9 +46,16 @@ struct SweepChain {
 ///   weighted centroid of the joint's vertices when that centroid lies at least a quarter of
 ///   their spread (RMS distance from the centroid) away from the joint, else along the bone
 ///   before it, else along the joint's bind-frame y axis; length the farthest reach of its
-///   vertices along that direction, at least half the bone before it (or their spread).
-/// Every joint carrying skin is thus on exactly one chain and owns one bone. `influences` are
-/// validated by ValidateRig first; fails naming the rig fault.
+///   vertices along that direction, at least half the bone before it (or their spread);
+/// - a joint whose largest blend zone (options.max_blend_fraction of the shorter of its two
+///   bones) would fold its skin (radius: the 90th percentile distance from the two bones of the
+///   vertices with at least half their weight on it, the joint before or the joint after) at a
+///   bend below options.min_fold_angle or below its rest bend is a cut: it ends its chain
+///   (owning no bone there, so no virtual bone either) and heads the next.
+/// Every joint carrying skin thus owns exactly one bone (a cut joint appears as the last joint
+/// of one chain and the first of the next). `influences` are validated by ValidateRig first;
+/// fails naming the rig fault. Positions in mesh (bind) units; `rest_positions` has `count`
+/// entries.
 Status BuildSweepChains(const SkinRig& rig, const Vec3* rest_positions,
                         const VertexWeights* influences, std::size_t count,
                         const SweepOptions& options, std::vector<SweepChain>* out);
