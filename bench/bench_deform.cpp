@@ -7,12 +7,16 @@
 // volume, folded volume and the thickness at the joint; twist it about x (animated 0..360
 // degrees) and report the minimum radius, the largest twist rate and frame-to-frame jumps.
 // Part 2: the shared glTF characters, every clip sampled evenly: largest relative change of the
-// enclosed volume and largest frame-to-frame vertex jump per deformer.
+// enclosed volume and largest frame-to-frame vertex jump per deformer (the dense glTF vertices
+// deformed directly).
+// Part 3 (deform_real_rigs.cpp): the shared rigs fitted and posed on their lod surface: bends and
+// twists built on their own skeletons, and every clip.
 //
 // It prints numbers and asserts nothing. Metric definitions: see PrintDefinitions() below.
 // Usage (from the repo root):
 //   bench_deform [--spacing D] [--voxel V] [--ring-points N] [--twist-step DEG]
-//                [--frames F] [--data DIR] [--no-characters] [--no-cylinder]
+//                [--frames F] [--data DIR] [--level L] [--no-characters] [--no-cylinder]
+//                [--no-real-rigs] [--no-clips] [--only NAME] [--pictures DIR]
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -31,10 +35,12 @@
 #include <utility>
 #include <vector>
 
+#include "deform_real_rigs.h"
 #include "dermis/asset/asset.h"
 #include "dermis/asset/asset_pose.h"
 #include "dermis/asset/asset_validate.h"
 #include "dermis/deform/deformer.h"
+#include "dermis/deform/sweep_chains.h"
 #include "dermis/plugins/gltf.h"
 
 using namespace dermis;
@@ -768,6 +774,21 @@ void RunCharacter(const std::string& path, int frames) {
       std::printf("\n");
       const double rest_volume = SignedVolume(rest, tris);
       std::printf("    rest (bind shape) signed volume %.6g\n", rest_volume);
+      // The sweep's chains (sweep_chains.h): ' | ' between chains, '(v)' a virtual end bone.
+      std::vector<SweepChain> chains;
+      if (BuildSweepChains(rig, rest.data(), influences.data(), count, SweepOptions{}, &chains)
+              .ok()) {
+        std::string line;
+        for (const SweepChain& c : chains) {
+          if (!line.empty()) line += " | ";
+          for (std::size_t i = 0; i < c.joints.size(); ++i) {
+            const std::string& nm = rig.names[static_cast<std::size_t>(c.joints[i])];
+            line += (i ? " > " : "") + (nm.empty() ? "#" + std::to_string(c.joints[i]) : nm);
+          }
+          if (c.virtual_end) line += " > (v)";
+        }
+        std::printf("    sweep chains: %s\n", line.c_str());
+      }
       // Deformers, built once per primitive.
       std::vector<std::unique_ptr<Deformer>> deformers(variants.size());
       std::vector<std::string> errors(variants.size());
@@ -780,7 +801,7 @@ void RunCharacter(const std::string& path, int frames) {
       }
       std::printf("    %-18s %6s", "clip", "dur");
       for (const Variant& v : variants)
-        std::printf(" | %-12s %5s %7s", v.label.c_str(), "dvol", "jump");
+        std::printf(" | %-12s %6s %7s", v.label.c_str(), "dvol", "jump");
       std::printf("\n");
       for (std::size_t a = 0; a < asset.animations.size(); ++a) {
         std::string clip = asset.animations[a].name;
@@ -797,7 +818,7 @@ void RunCharacter(const std::string& path, int frames) {
         std::printf("    %-18s %6.2f", clip.c_str(), asset.animations[a].Duration());
         for (std::size_t k = 0; k < variants.size(); ++k) {
           if (!deformers[k]) {
-            std::printf(" | %-12s %13s", variants[k].label.c_str(), "n/a");
+            std::printf(" | %-12s %14s", variants[k].label.c_str(), "n/a");
             continue;
           }
           Deformer& d = *deformers[k];
@@ -824,14 +845,14 @@ void RunCharacter(const std::string& path, int frames) {
           }
           if (!error.empty()) {
             errors[k] = error;
-            std::printf(" | %-12s %13s", variants[k].label.c_str(), "n/a");
+            std::printf(" | %-12s %14s", variants[k].label.c_str(), "n/a");
             continue;
           }
           const double j = diag > 0.0 ? jump / diag : 0.0;
           if (flat) {
-            std::printf(" | %-12s %5s %7.4f", variants[k].label.c_str(), "-", j);
+            std::printf(" | %-12s %6s %7.4f", variants[k].label.c_str(), "-", j);
           } else {
-            std::printf(" | %-12s %5.3f %7.4f", variants[k].label.c_str(), dvol, j);
+            std::printf(" | %-12s %6.4f %7.4f", variants[k].label.c_str(), dvol, j);
           }
         }
         std::printf("\n");
@@ -852,7 +873,9 @@ int main(int argc, char** argv) {
   double spacing = 0.05, voxel_ratio = 1.0, twist_step = 2.0;
   int ring_points = 64, frames = 60;
   std::string data = "../shared/data/gltf";
-  bool characters = true, cylinder = true;
+  bool characters = true, cylinder = true, real_rigs = true, clips = true;
+  int level = 4;
+  std::string only, pictures;
   for (int i = 1; i < argc; ++i) {
     const auto next = [&](const char* flag) -> const char* {
       if (i + 1 >= argc) {
@@ -877,16 +900,27 @@ int main(int argc, char** argv) {
       characters = false;
     } else if (std::strcmp(argv[i], "--no-cylinder") == 0) {
       cylinder = false;
+    } else if (std::strcmp(argv[i], "--no-real-rigs") == 0) {
+      real_rigs = false;
+    } else if (std::strcmp(argv[i], "--no-clips") == 0) {
+      clips = false;
+    } else if (std::strcmp(argv[i], "--pictures") == 0) {
+      pictures = next("--pictures");
+    } else if (std::strcmp(argv[i], "--only") == 0) {
+      only = next("--only");
+    } else if (std::strcmp(argv[i], "--level") == 0) {
+      level = std::atoi(next("--level"));
     } else {
-      std::fprintf(stderr,
-                   "usage: bench_deform [--spacing D] [--voxel RATIO] [--ring-points N] "
-                   "[--twist-step DEG] [--frames F] [--data DIR] [--no-characters] "
-                   "[--no-cylinder]\n");
+      std::fprintf(
+          stderr,
+          "usage: bench_deform [--spacing D] [--voxel RATIO] [--ring-points N] "
+          "[--twist-step DEG] [--frames F] [--data DIR] [--level L] [--no-characters] "
+          "[--no-cylinder] [--no-real-rigs] [--no-clips] [--only NAME] [--pictures DIR]\n");
       return 2;
     }
   }
   if (!(spacing > 0.0 && spacing <= 1.0) || !(voxel_ratio > 0.0) || ring_points < 3 ||
-      !(twist_step > 0.0 && twist_step <= 90.0) || frames < 2) {
+      !(twist_step > 0.0 && twist_step <= 90.0) || frames < 2 || level < 1 || level > 64) {
     std::fprintf(stderr, "bench_deform: option out of range\n");
     return 2;
   }
@@ -905,6 +939,17 @@ int main(int argc, char** argv) {
          {"SimpleSkin.gltf", "RiggedSimple.glb", "RiggedFigure.glb", "Fox.glb", "CesiumMan.glb"}) {
       RunCharacter(data + "/" + file, frames);
     }
+  }
+  if (real_rigs) {
+    bench::RealRigOptions o;
+    o.data = data;
+    o.level = level;
+    o.clip_frames = frames;
+    o.clips = clips;
+    o.only = only;
+    o.pictures = pictures;
+    std::printf("\n");
+    bench::RunRealRigs(o);
   }
   return 0;
 }

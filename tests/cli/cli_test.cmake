@@ -318,4 +318,14 @@ expect_run(0 "bound\\.glb: valid" ${DERMIS} validate ${ch}/bound.glb)
 expect_run(0 "8 views" ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/sheet.png --frames 4
            --size 120x120 --heatmap error --compare lbs)
 expect_png(${ch}/sheet.png 2000)
+# Three rows (sweep, DQS, LBS) of 3 frames, one column per frame; a bad name in the list is a
+# usage error.
+expect_run(0 "9 views, 192x192" ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/three.png --frames 3
+           --size 64x64 --compare dqs,lbs)
+expect_png(${ch}/three.png 1000)
+expect_run(2 "unknown deformer .cage." ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/bad_three.png
+           --frames 3 --compare dqs,cage)
+if(EXISTS ${ch}/bad_three.png)
+  message(FATAL_ERROR "a refused render wrote ch/bad_three.png")
+endif()
 expect_run(1 "no clip" ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/x.png --clip walk)

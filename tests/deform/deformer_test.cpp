@@ -11,6 +11,8 @@
 #include <memory>
 #include <vector>
 
+#include "dermis/deform/sweep_chains.h"
+
 namespace dermis {
 namespace {
 
@@ -443,6 +445,253 @@ TEST_CASE("deform: a joint scaled to zero is accepted and collapses its vertices
     CHECK(glm::length(x[0] - Vec3(4, 0, 0)) < 1e-9);  // collapsed onto the joint
     CHECK(glm::length(x[1] - rest[1]) < 1e-9);        // joint 0 did not move
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Chains: every joint that carries skin owns a bone.
+
+// Joint 0 at the origin, joint 1 at x = 4 (a leaf); the tube of MakeTube() (x in [0, 8]).
+SkinRig Chain2() {
+  SkinRig rig;
+  rig.parents = {-1, 0};
+  rig.bind = {glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), {4, 0, 0})};
+  rig.names = {"root", "elbow"};
+  return rig;
+}
+
+TEST_CASE("sweep chains: a skinned leaf gets a virtual bone along its vertices") {
+  SECTION("a straight limb: along the bone, as far as its vertices reach") {
+    const Tube t = MakeTube();
+    std::vector<SweepChain> chains;
+    REQUIRE(BuildSweepChains(Chain2(), t.x.data(), t.w.data(), t.x.size(), SweepOptions{}, &chains)
+                .ok());
+    REQUIRE(chains.size() == 1);
+    CHECK(chains[0].joints == std::vector<Index>{0, 1});
+    CHECK(chains[0].virtual_end);
+    CHECK(chains[0].end_direction == SweepChain::EndDirection::kSkin);
+    REQUIRE(chains[0].points.size() == 3);
+    CHECK(glm::length(chains[0].points[2] - Vec3(8, 0, 0)) < 1e-12);
+  }
+  SECTION("a hand bent at rest: towards its vertices' centroid") {
+    // Forearm along x (weights on joint 0), hand: rings of radius 0.5 around the direction
+    // (1, 1, 0) / sqrt 2 from the wrist, 0.5 to 3 along it (weights on joint 1).
+    const Vec3 dir = glm::normalize(Vec3(1, 1, 0)), side = glm::normalize(Vec3(-1, 1, 0));
+    std::vector<Vec3> x;
+    std::vector<VertexWeights> w;
+    for (int i = 0; i <= 8; ++i) {
+      for (int k = 0; k < 8; ++k) {
+        const double a = 2.0 * kPi * k / 8;
+        const Vec3 ring = 0.5 * (std::cos(a) * side + std::sin(a) * Vec3(0, 0, 1));
+        x.push_back(Vec3(0.5 * i, 0, 0) + ring.y * Vec3(0, 1, 0) + ring.z * Vec3(0, 0, 1));
+        w.push_back(Two(0, 1, 0.0f));
+        x.push_back(Vec3(4, 0, 0) + (0.5 + 2.5 * i / 8.0) * dir + ring);
+        w.push_back(Two(0, 1, 1.0f));
+      }
+    }
+    std::vector<SweepChain> chains;
+    REQUIRE(BuildSweepChains(Chain2(), x.data(), w.data(), x.size(), SweepOptions{}, &chains).ok());
+    REQUIRE(chains.size() == 1);
+    REQUIRE(chains[0].virtual_end);
+    const Vec3 bone = chains[0].points[2] - Vec3(4, 0, 0);
+    CHECK(glm::length(glm::normalize(bone) - dir) < 1e-12);
+    CHECK(glm::length(bone) == Approx(3.0).epsilon(1e-12));  // the farthest ring
+  }
+  SECTION("vertices around the joint: along the bone before it, half its length at least") {
+    std::vector<Vec3> x;
+    std::vector<VertexWeights> w;
+    for (int k = 0; k < 6; ++k) {
+      const Vec3 axis = k < 2 ? Vec3(1, 0, 0) : k < 4 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+      x.push_back(Vec3(4, 0, 0) + (k % 2 ? -0.5 : 0.5) * axis);  // a ball around the wrist
+      w.push_back(Two(0, 1, 1.0f));
+      x.push_back(Vec3(2, 0.5, 0));
+      w.push_back(Two(0, 1, 0.0f));
+    }
+    std::vector<SweepChain> chains;
+    REQUIRE(BuildSweepChains(Chain2(), x.data(), w.data(), x.size(), SweepOptions{}, &chains).ok());
+    REQUIRE(chains.size() == 1);
+    CHECK(chains[0].end_direction == SweepChain::EndDirection::kIncoming);
+    CHECK(glm::length(chains[0].points[2] - Vec3(6, 0, 0)) < 1e-12);  // half the bone of 4
+  }
+}
+
+// A body: pelvis 0 (root) with spine 1 (up) and two legs 2, 3 (down, each to a knee 4, 5);
+// spine 1 -> chest 6, which has a neck 7 (straight up) and two shoulders 8, 9 (sideways, each to
+// an elbow 10, 11). Every joint carries skin.
+TEST_CASE("sweep chains: branch joints continue straight ahead; every skinned joint owns a bone") {
+  SkinRig rig;
+  rig.parents = {-1, 0, 0, 0, 2, 3, 1, 6, 6, 6, 8, 9};
+  const std::vector<Vec3> at = {{0, 0, 0},   {0, 2, 0},    {1, -0.5, 0}, {-1, -0.5, 0},
+                                {1, -4, 0},  {-1, -4, 0},  {0, 4, 0},    {0, 6, 0},
+                                {1.5, 4, 0}, {-1.5, 4, 0}, {4, 4, 0},    {-4, 4, 0}};
+  for (const Vec3& p : at) rig.bind.push_back(glm::translate(glm::dmat4(1.0), p));
+  // One vertex on each joint, 0.3 off its position, so every joint carries skin.
+  std::vector<Vec3> x;
+  std::vector<VertexWeights> w;
+  for (std::size_t j = 0; j < at.size(); ++j) {
+    x.push_back(at[j] + Vec3(0, 0, 0.3));
+    VertexWeights vw;
+    vw.joints = glm::u16vec4(static_cast<std::uint16_t>(j), 0, 0, 0);
+    vw.weights = glm::vec4(1, 0, 0, 0);
+    w.push_back(vw);
+  }
+  std::vector<SweepChain> chains;
+  REQUIRE(BuildSweepChains(rig, x.data(), w.data(), x.size(), SweepOptions{}, &chains).ok());
+  // The pelvis continues into the spine (its subtree carries the most skin), the chest into the
+  // neck (straight ahead of the spine), not into a shoulder.
+  bool spine_chain = false;
+  std::vector<int> owner(at.size(), 0);
+  for (const SweepChain& c : chains) {
+    if (c.joints.size() >= 4 && c.joints[0] == 0 && c.joints[1] == 1 && c.joints[2] == 6 &&
+        c.joints[3] == 7) {
+      spine_chain = true;
+    }
+    // Bone i is owned by joints[i]; a chain ending in a joint without a virtual bone leaves
+    // that joint to the chain it heads.
+    const std::size_t bones = c.points.size() - 1;
+    for (std::size_t i = 0; i < bones; ++i) ++owner[static_cast<std::size_t>(c.joints[i])];
+  }
+  CHECK(spine_chain);
+  for (std::size_t j = 0; j < at.size(); ++j) {
+    INFO("joint " << j);
+    CHECK(owner[j] == 1);
+  }
+}
+
+TEST_CASE("sweep: a skinned leaf bends and twists exactly as an inner joint") {
+  // Chain2's leaf (joint 1) carries the forearm; its virtual bone ends at x = 8, where Chain3
+  // has an unskinned wrist. Same vertices, same weights, same poses: same sweep.
+  const Tube t = MakeTube();
+  std::unique_ptr<Deformer> leaf, inner;
+  REQUIRE(MakeSweepDeformer(Chain2(), t.x.data(), t.n.data(), t.w.data(), t.x.size(),
+                            SweepOptions{}, &leaf)
+              .ok());
+  REQUIRE(MakeSweepDeformer(Chain3(), t.x.data(), t.n.data(), t.w.data(), t.x.size(),
+                            SweepOptions{}, &inner)
+              .ok());
+  std::vector<Vec3> a(t.x.size()), b(t.x.size()), na(t.x.size()), nb(t.x.size());
+  auto compare = [&](const std::vector<glm::dmat4>& palette3) {
+    const std::vector<glm::dmat4> palette2(palette3.begin(), palette3.begin() + 2);
+    REQUIRE(leaf->SetPose(palette2.data()).ok());
+    REQUIRE(inner->SetPose(palette3.data()).ok());
+    leaf->Deform(0, a.size(), a.data(), na.data());
+    inner->Deform(0, b.size(), b.data(), nb.data());
+    double worst = 0.0;
+    for (std::size_t v = 0; v < a.size(); ++v) {
+      worst = std::max({worst, glm::length(a[v] - b[v]), glm::length(na[v] - nb[v])});
+    }
+    return worst;
+  };
+  // The bind pose, bends (arc, volume fix, fold clamp) and a twist of the leaf through 360
+  // degrees (spread along the forearm, unwrapped).
+  CHECK(compare(std::vector<glm::dmat4>(3, glm::dmat4(1.0))) < 1e-12);
+  for (const double deg : {45.0, 90.0, 150.0}) {
+    INFO(deg << " degrees");
+    CHECK(compare(BendPalette(deg * kPi / 180.0)) < 1e-9);
+  }
+  for (int step = 0; step <= 36; ++step) {
+    const glm::dmat4 tw = glm::translate(glm::dmat4(1.0), {4, 0, 0}) *
+                          glm::rotate(glm::dmat4(1.0), 2.0 * kPi * step / 36.0, {1, 0, 0}) *
+                          glm::translate(glm::dmat4(1.0), {-4, 0, 0});
+    INFO("twist step " << step);
+    CHECK(compare({glm::dmat4(1.0), tw, tw}) < 1e-9);
+  }
+  // And the leaf's bend is not DQS: the forearm far from the joint is rigid with it, the ring
+  // at the joint is thickened by the volume fix.
+  const auto palette = BendPalette(kPi / 2);
+  REQUIRE(leaf->SetPose(palette.data()).ok());
+  leaf->Deform(0, a.size(), a.data(), nullptr);
+  const std::size_t ring = 16 * 8;  // x = 4
+  CHECK(glm::length(a[ring + 2] - a[ring + 6]) > 2.02);
+}
+
+TEST_CASE("sweep: a vertex of two chains blends their frames without collapse") {
+  // Two separate chains: 0 -> 1 along x to x = 4 and 2 -> 3 from x = 4 to 8 (two roots). A ring
+  // of vertices at x = 4, half on joint 0 and half on joint 2; joint 2 (and 3) twist about x.
+  SkinRig rig;
+  rig.parents = {-1, 0, -1, 2};
+  rig.bind = {glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), {4, 0, 0}),
+              glm::translate(glm::dmat4(1.0), {4, 0, 0}),
+              glm::translate(glm::dmat4(1.0), {8, 0, 0})};
+  std::vector<Vec3> x;
+  std::vector<VertexWeights> w;
+  for (int k = 0; k < 8; ++k) {
+    const double a = 2.0 * kPi * k / 8;
+    x.push_back({4, std::cos(a), std::sin(a)});
+    w.push_back(Two(0, 2, 0.5f));
+    x.push_back({2, std::cos(a), std::sin(a)});  // on joint 0 only
+    w.push_back(Two(0, 2, 0.0f));
+    x.push_back({6, std::cos(a), std::sin(a)});  // on joint 2 only
+    w.push_back(Two(0, 2, 1.0f));
+  }
+  std::unique_ptr<Deformer> sweep, lbs;
+  REQUIRE(
+      MakeSweepDeformer(rig, x.data(), nullptr, w.data(), x.size(), SweepOptions{}, &sweep).ok());
+  REQUIRE(MakeLbsDeformer(rig, x.data(), nullptr, w.data(), x.size(), &lbs).ok());
+  const double theta = 170.0 * kPi / 180.0;
+  const glm::dmat4 tw = glm::translate(glm::dmat4(1.0), {4, 0, 0}) *
+                        glm::rotate(glm::dmat4(1.0), theta, {1, 0, 0}) *
+                        glm::translate(glm::dmat4(1.0), {-4, 0, 0});
+  const std::vector<glm::dmat4> palette = {glm::dmat4(1.0), glm::dmat4(1.0), tw, tw};
+  REQUIRE(sweep->SetPose(palette.data()).ok());
+  REQUIRE(lbs->SetPose(palette.data()).ok());
+  std::vector<Vec3> s(x.size()), l(x.size());
+  sweep->Deform(0, s.size(), s.data(), nullptr);
+  lbs->Deform(0, l.size(), l.data(), nullptr);
+  for (std::size_t v = 0; v < x.size(); v += 3) {
+    // Half way: turned by theta / 2 about the axis at radius 1 (LBS: cos(theta / 2) = 0.087).
+    const Vec3 want =
+        Vec3(glm::rotate(glm::dmat4(1.0), 0.5 * theta, {1, 0, 0}) * glm::dvec4(x[v], 1.0));
+    CHECK(glm::length(s[v] - want) < 1e-9);
+    CHECK(std::hypot(l[v].y, l[v].z) == Approx(std::cos(0.5 * theta)).margin(1e-6));
+    // The vertices of one chain each move rigidly with it.
+    CHECK(glm::length(s[v + 1] - x[v + 1]) < 1e-9);
+    CHECK(glm::length(s[v + 2] - Vec3(tw * glm::dvec4(x[v + 2], 1.0))) < 1e-9);
+  }
+}
+
+TEST_CASE("sweep chains: a joint too sharp or too short for its skin is cut, not swept") {
+  // An elbow bent 120 degrees at rest with bones of 4 and a skin radius of 1.5: the largest
+  // blend zone (0.49 * 4) folds at 2 atan(1.96 / 1.5) = 105 degrees < 120: the chain ends at
+  // the elbow and the elbow heads its own.
+  SkinRig rig;
+  rig.parents = {-1, 0, 1};
+  const Vec3 wrist = Vec3(4, 0, 0) + 4.0 * Vec3(std::cos(2 * kPi / 3), std::sin(2 * kPi / 3), 0);
+  rig.bind = {glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), {4, 0, 0}),
+              glm::translate(glm::dmat4(1.0), wrist)};
+  std::vector<Vec3> x;
+  std::vector<VertexWeights> w;
+  for (int k = 0; k < 8; ++k) {
+    const double a = 2.0 * kPi * k / 8;
+    const Vec3 off(0, 1.5 * std::cos(a), 1.5 * std::sin(a));
+    x.push_back(Vec3(3, 0, 0) + Vec3(0, 0, off.z) + off.y * Vec3(0, 1, 0));
+    w.push_back(Two(0, 1, 0.5f));
+    x.push_back(Vec3(1, 0, 0) + off);
+    w.push_back(Two(0, 1, 0.0f));
+  }
+  std::vector<SweepChain> chains;
+  REQUIRE(BuildSweepChains(rig, x.data(), w.data(), x.size(), SweepOptions{}, &chains).ok());
+  REQUIRE(chains.size() == 2);
+  CHECK(chains[0].joints == std::vector<Index>{0, 1});
+  CHECK_FALSE(chains[0].virtual_end);
+  CHECK(chains[1].joints == std::vector<Index>{1, 2});  // the wrist carries no skin
+  CHECK_FALSE(chains[1].virtual_end);
+  // Straightened at rest, the same elbow is swept through.
+  rig.bind[2] = glm::translate(glm::dmat4(1.0), {8, 0, 0});
+  REQUIRE(BuildSweepChains(rig, x.data(), w.data(), x.size(), SweepOptions{}, &chains).ok());
+  REQUIRE(chains.size() == 1);
+  CHECK(chains[0].joints == std::vector<Index>{0, 1, 2});
+  // Shorter bones for the same skin (2 atan(0.49 * 2 / 1.5): folding at 66 degrees) are swept
+  // through; a fold angle of 70 degrees asked for cuts them.
+  std::vector<Vec3> thin = x;
+  for (Vec3& p : thin) p = Vec3(0.5 * p.x, p.y, p.z);
+  rig.bind[1] = glm::translate(glm::dmat4(1.0), {2, 0, 0});
+  rig.bind[2] = glm::translate(glm::dmat4(1.0), {4, 0, 0});
+  REQUIRE(BuildSweepChains(rig, thin.data(), w.data(), thin.size(), SweepOptions{}, &chains).ok());
+  CHECK(chains.size() == 1);
+  SweepOptions strict;
+  strict.min_fold_angle = 70.0 * kPi / 180.0;
+  REQUIRE(BuildSweepChains(rig, thin.data(), w.data(), thin.size(), strict, &chains).ok());
+  CHECK(chains.size() == 2);
 }
 
 }  // namespace

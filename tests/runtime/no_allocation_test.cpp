@@ -8,8 +8,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
+#include <glm/gtc/matrix_transform.hpp>
 #include <new>
 
+#include "dermis/deform/deformer.h"
 #include "dermis/dermis.h"
 #include "dermis/runtime/runtime.h"
 #include "support/fixtures.h"
@@ -136,6 +138,67 @@ TEST_CASE("runtime: per-frame calls do not allocate") {
   dermis_instance_destroy(inst);
   dermis_character_destroy(c);
   dermis_character_destroy(nullptr);
+}
+
+TEST_CASE("sweep: SetPose and Deform do not allocate, blended and leaf vertices included") {
+  // A branching rig: a root with two chains (0 -> 1 -> 2 and 0 -> 3 -> 4), the leaves 2 and 4
+  // carrying skin (virtual end bones), vertices shared by the two chains (dual-quaternion blend
+  // of their frames) and a stretched pose (the DQS share).
+  SkinRig rig;
+  rig.parents = {-1, 0, 1, 0, 3};
+  for (const Vec3& p :
+       {Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(8, 0, 0), Vec3(0, 4, 0), Vec3(0, 8, 0)}) {
+    rig.bind.push_back(glm::translate(glm::dmat4(1.0), p));
+  }
+  std::vector<Vec3> x, n;
+  std::vector<VertexWeights> w;
+  for (int i = 0; i <= 40; ++i) {
+    for (int k = 0; k < 8; ++k) {
+      const double a = 0.785398163397 * k;
+      const double t = 0.25 * i;
+      for (int arm = 0; arm < 2; ++arm) {
+        const Vec3 along = arm == 0 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+        const Vec3 side = arm == 0 ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
+        x.push_back(t * along + 0.8 * (std::cos(a) * side + std::sin(a) * Vec3(0, 0, 1)));
+        n.push_back(std::cos(a) * side + std::sin(a) * Vec3(0, 0, 1));
+        VertexWeights vw;
+        const std::uint16_t j1 = arm == 0 ? 1 : 3, j2 = arm == 0 ? 2 : 4;
+        const float u = static_cast<float>(std::clamp((t - 3.0) / 2.0, 0.0, 1.0));
+        const float v = static_cast<float>(std::clamp((t - 7.0) / 2.0, 0.0, 1.0));
+        vw.joints = glm::u16vec4(0, j1, j2, arm == 0 ? 3 : 1);
+        const float near_root = t < 1.0 ? 0.3f : 0.0f;  // shared with the other chain
+        vw.weights = glm::vec4(1.0f - u, u - v, v, near_root);
+        w.push_back(vw);
+      }
+    }
+  }
+  std::unique_ptr<Deformer> d;
+  REQUIRE(MakeSweepDeformer(rig, x.data(), n.data(), w.data(), x.size(), SweepOptions{}, &d).ok());
+  std::vector<Vec3> out(x.size()), nout(x.size());
+  std::vector<glm::dmat4> palette(5, glm::dmat4(1.0));
+  long during = 0;
+  bool ok = true;
+  for (int frame = 0; frame < 6; ++frame) {
+    const double a = 0.4 * frame;
+    palette[1] = glm::translate(glm::dmat4(1.0), {4, 0, 0}) *
+                 glm::rotate(glm::dmat4(1.0), a, {0, 0, 1}) *
+                 glm::translate(glm::dmat4(1.0), {-4, 0, 0});
+    palette[2] = palette[1] * glm::translate(glm::dmat4(1.0), {8, 0, 0}) *
+                 glm::rotate(glm::dmat4(1.0), 1.5 * a, {1, 0, 0}) *
+                 glm::translate(glm::dmat4(1.0), {-8, 0, 0});
+    palette[3] = glm::translate(glm::dmat4(1.0), {0, 4, 0}) *
+                 glm::rotate(glm::dmat4(1.0), -a, {0, 0, 1}) *
+                 glm::scale(glm::dmat4(1.0), {1.0, 1.0 + 0.01 * frame, 1.0}) *
+                 glm::translate(glm::dmat4(1.0), {0, -4, 0});
+    palette[4] = palette[3];
+    const long before = g_allocations.load();
+    ok = d->SetPose(palette.data()).ok() && ok;
+    d->Deform(0, x.size(), out.data(), nout.data());
+    during += g_allocations.load() - before;
+  }
+  CHECK(ok);
+  CHECK(during == 0);
+  for (const Vec3& p : out) CHECK(std::isfinite(p.x + p.y + p.z));
 }
 
 }  // namespace dermis

@@ -36,7 +36,7 @@ struct RenderArgs {
   double time = 0.0;
   bool time_given = false;
   std::string deformer = "sweep";
-  std::string compare;  // a second deformer drawn as a second row
+  std::string compare;  // deformers (comma-separated) drawn as further rows
   std::string mode = "lod";
   int level = 6;
   int displacement_levels = -1;
@@ -280,8 +280,20 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
   return kExitOk;
 }
 
-// A character posed at --time or over --frames of a clip, with --compare's deformer as a second
-// row. Returns an exit status.
+// The deformers of --compare, in order ("dqs,lbs" -> {"dqs", "lbs"}).
+std::vector<std::string> CompareList(const std::string& compare) {
+  std::vector<std::string> out;
+  std::size_t at = 0;
+  while (!compare.empty() && at <= compare.size()) {
+    const std::size_t comma = std::min(compare.find(',', at), compare.size());
+    out.push_back(compare.substr(at, comma - at));
+    at = comma + 1;
+  }
+  return out;
+}
+
+// A character posed at --time or over --frames of a clip, with --compare's deformers as further
+// rows. Returns an exit status.
 int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view_out,
                     std::vector<render::Image>* images) {
   render::View& view = *view_out;
@@ -294,9 +306,9 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
     return Fail(kCommand, Status::InvalidInput(a.input + ": --time and --frames apply to a clip (" +
                                                ClipList(ch.asset) + ")"));
   }
-  // One poser per deformer drawn: the primary one, and --compare's as a second row.
+  // One poser per deformer drawn: the primary one, and --compare's as further rows.
   std::vector<std::string> deformers = {a.deformer};
-  if (!a.compare.empty()) deformers.push_back(a.compare);
+  for (const std::string& d : CompareList(a.compare)) deformers.push_back(d);
   std::vector<CharacterPoser> posers(deformers.size());
   for (std::size_t k = 0; k < deformers.size(); ++k) {
     CharacterPoseOptions po;
@@ -428,7 +440,7 @@ int RunRender(const RenderArgs& a) {
   const int columns =
       a.columns > 0 ? a.columns
       : !a.compare.empty()
-          ? static_cast<int>(images.size() / 2)
+          ? static_cast<int>(images.size() / (1 + CompareList(a.compare).size()))
           : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(images.size()))));
   const render::Image out = images.size() == 1 ? images[0] : render::ContactSheet(images, columns);
   const Status s = render::WritePng(a.output, out);
@@ -470,9 +482,19 @@ void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
       ->check(CLI::Range(1, 64));
   AddDeformerOption(cmd, "--deformer", "Deformer of the control vertices", &args->deformer)
       ->capture_default_str();
-  AddDeformerOption(cmd, "--compare",
-                    "Characters: draw the same frames with this deformer too, as a second row",
-                    &args->compare);
+  cmd->add_option("--compare", args->compare,
+                  "Characters: draw the same frames with these deformers too (comma-separated, "
+                  "e.g. dqs,lbs), one row each")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            for (const std::string& d : CompareList(value)) {
+              DeformerKind kind;
+              const Status s = DeformerFromName(d, &kind);
+              if (!s.ok()) return s.message();
+            }
+            return std::string();
+          },
+          "DEFORMER[,DEFORMER...]"));
   cmd->add_option("--mode", args->mode,
                   "Characters: lod (the surface tessellated at --level) or bound (the original "
                   "vertices on the surface)")

@@ -9,19 +9,25 @@
 //   maps linearly to each straight piece and to the arc angle;
 // - frames F (1.2): the start joint's rotation transported along C (rotation-minimising: constant
 //   on straight pieces, rotated about the arc axis on arcs, exact for circles), times a twist
-//   about the tangent that is linear in s between the joints' twists; each twist is the
-//   swing-twist residue of the joint's rotation against the transported frame, unwrapped
-//   along the chain and against the previous pose, so twists past 180 degrees do not flip;
+//   about the tangent ramped in s from joint to joint (on past a joint as far as its painted
+//   weight transition reaches); each twist is the swing-twist residue of the joint's rotation
+//   against the transported frame, unwrapped along the chain and against the previous pose, so
+//   twists past 180 degrees do not flip;
 // - scale sigma (1.5): a sin^2 bump of half-width W around each bent joint, its height solved in
 //   closed form per frame so that the swept volume of the zone (Pappus) equals the rest one;
 // - folds (1.6): vertices of the two bones of a bent joint are clamped against its bisector
 //   plane on the inside of the bend.
+// Every joint that carries skin owns a bone (sweep_chains.cpp, docs/deformation.md "Chains"):
+// a chain runs through a branch joint into the child that continues it, a chain whose last
+// joint carries skin (a hand, a head, a foot) ends in a virtual bone along that joint's
+// vertices, and a joint too sharp or too short for its skin is cut.
 // Vertices are bound once in the bind pose (1.3): to each chain holding enough of their skin
 // weight, at the closest point of that chain's rest trajectory on the bones they are weighted
-// to, storing the offset in the start-transported frame. Several chains blend by weight; joints
-// on no chain (branch joints, and the last joint of every chain, which has no bone: a hand, a head)
-// are deformed by DQS with the vertex's original weights and blended in by their share (shape
-// blending, docs/notes/sweep.md section 2).
+// to, storing the offset in the start-transported frame. A vertex of one chain is the sweep's
+// point; a vertex of several chains (shoulder, hip, neck base) blends the chains' rigid frames
+// at its bound points as dual quaternions (Kavan et al. 2008) and adds the weighted sum of their
+// non-rigid corrections (volume bump, fold clamp): never a linear blend of positions rotated far
+// apart.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -29,6 +35,7 @@
 
 #include "deform/deform_math.h"
 #include "dermis/deform/deformer.h"
+#include "dermis/deform/sweep_chains.h"
 
 namespace dermis {
 namespace {
@@ -64,21 +71,22 @@ struct ChainGeom {
 
 /// What a chain keeps from the bind pose.
 struct Chain {
-  std::vector<Index> joints;   // J0..Jn (rig indices)
+  std::vector<Index> joints;   // J0..Jn (rig indices); a virtual end repeats the last joint
   std::vector<double> s;       // rest arc length at each joint (polyline), n + 1
   std::vector<double> len;     // rest bone lengths, n
   std::vector<double> radius;  // skin radius around each interior joint
   std::vector<double> h_base;  // blend half-length of a slight bend
   std::vector<double> h_max;   // largest blend half-length (a share of the shorter bone)
   std::vector<double> w;       // volume bump half-width per joint (0: no bump)
+  std::vector<double> reach;   // twist ramp of each joint: from the joint before to s + reach
   std::vector<Vec3> t0;        // rest bone directions
   ChainGeom rest;
   // Per-frame state (preallocated).
   ChainGeom pose;
   glm::dquat q0{1.0, 0.0, 0.0, 0.0};  // rotation of J0 relative to bind
   double scale = 1.0;                 // uniform scale of the whole chain in this pose
-  bool usable = true;       // false: a joint stretches non-uniformly; its vertices use DQS
-  std::vector<double> tau;  // twist per joint
+  double dqs_share = 0.0;             // 0: swept; 1: a joint stretches non-uniformly, DQS instead
+  std::vector<double> tau;            // twist per joint
   std::vector<double> prev_tau;
   std::vector<double> k;  // bump height per joint
   double length() const { return s.back(); }
@@ -91,8 +99,30 @@ struct Binding {
   std::uint32_t bone = 0;  // bone holding s (n - 1 beyond the end)
   double weight = 0.0;
   double s = 0.0;
-  Vec3 axial{0.0}, radial{0.0};  // offset in the start-transported frame
-  Vec3 normal{0.0};              // rest normal in the same frame
+  Vec3 axial{0.0}, radial{0.0};              // offset in the start-transported frame
+  Vec3 normal{0.0};                          // rest normal in the same frame
+  glm::dquat rest_back{1.0, 0.0, 0.0, 0.0};  // rest transport at s, inverted
+  // Constant per binding, precomputed: the twist at s is tau[twist_full] plus the increments of
+  // at most two joints still ramping there, and the bumps reaching s (first, count in
+  // SweepDeformer::bumps_).
+  std::uint16_t twist_full = 0;
+  std::uint16_t twist_joint[2] = {0, 0};  // 0: unused
+  double twist_share[2] = {0.0, 0.0};
+  std::uint32_t bump_first = 0;
+  std::uint16_t bump_count = 0;
+};
+
+/// One volume bump reaching a bound vertex: the joint and the bump's shape there.
+struct BumpTerm {
+  std::uint16_t joint = 0;
+  double beta = 0.0;
+};
+
+/// The joints of a vertex that no chain binding carries (a chain share at most the blend
+/// threshold), entering the blend by their own rigid transforms; weights in the bindings' scale.
+struct LooseWeights {
+  glm::u16vec4 joints{0};
+  glm::dvec4 weights{0.0};
 };
 
 double ArcCompression(double theta) {
@@ -241,23 +271,33 @@ class SweepDeformer final : public Deformer {
   }
 
  private:
-  void MakeChains(const SkinRig& rig);
-  Vec3 EvalBinding(const Binding& b, Vec3* normal) const;
+  void MakeChains(const std::vector<SweepChain>& chains);
+  /// The sweep's image of a bound vertex (`x`, with the volume bump and the fold clamp), the
+  /// rotation of its frame relative to the rest frame at its point (`rotation`) and its image
+  /// without the bump and the clamp (`rigid`: the rest offset carried rigidly by that frame).
+  void EvalBinding(const Binding& b, Vec3* x, glm::dquat* rotation, Vec3* rigid,
+                   Vec3* normal) const;
+  /// A vertex bound to several chains, or with loose joints: the chains' rigid frames at its
+  /// points and the loose joints' rigid parts blended as dual quaternions (two-phase: scales
+  /// and stretches blended linearly first), plus the weighted corrections of the chains.
+  void Blend(std::size_t v, Vec3* position, Vec3* normal) const;
 
   SweepOptions options_;
   std::size_t joints_ = 0, count_ = 0;
   bool has_normals_ = false;
   bool history_ = false;
   std::vector<Chain> chains_;
-  std::vector<int> chain_of_;              // per joint: chain, or -1 (rest bucket)
-  std::vector<int> bone_of_;               // per joint: bone index within its chain (n = end joint)
-  std::vector<Vec3> bind_position_;        // per joint
+  std::vector<int> chain_of_;              // per joint: chain, or -1 (no skin, no bone)
+  std::vector<int> bone_of_;               // per joint: bone index within its chain
   std::vector<glm::dquat> pose_rotation_;  // per joint, relative to bind (per frame)
-  std::vector<double> joint_scale_;        // per joint: uniform scale, or NaN (per frame)
+  std::vector<double> joint_scale_;        // per joint: mean scale (per frame)
+  std::vector<double> joint_skew_;         // per joint: relative non-uniformity (per frame)
   std::vector<std::uint32_t> first_;       // per vertex: first binding, count_ + 1 entries
   std::vector<Binding> bindings_;
-  std::vector<double> rest_share_;  // per vertex: share deformed by DQS
-  // The DQS fallback (rest bucket): rest data and the per-frame joint palette.
+  std::vector<BumpTerm> bumps_;
+  std::vector<LooseWeights> loose_;   // per vertex
+  std::vector<std::uint8_t> direct_;  // per vertex: 1 = one chain, whole weight (no blend)
+  // Rest data and the per-frame joint palette (DQS of stretched chains, loose joints).
   std::vector<Vec3> rest_, normals_;
   std::vector<VertexWeights> weights_;
   std::vector<deform::DualQuat> dq_;
@@ -265,58 +305,25 @@ class SweepDeformer final : public Deformer {
   bool has_stretch_ = false;
 };
 
-void SweepDeformer::MakeChains(const SkinRig& rig) {
-  const std::size_t n = rig.parents.size();
-  std::vector<std::vector<Index>> children(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    if (rig.parents[j] >= 0) children[static_cast<std::size_t>(rig.parents[j])].push_back(Index(j));
-  }
-  double scale = 0.0;
-  for (std::size_t j = 0; j < n; ++j) scale = std::max(scale, glm::length(bind_position_[j]));
-  const double min_bone = 1e-9 * std::max(scale, 1e-30);
-  auto bone_ok = [&](Index from, Index to) {
-    return glm::length(bind_position_[static_cast<std::size_t>(to)] -
-                       bind_position_[static_cast<std::size_t>(from)]) > min_bone;
-  };
-  // Heads: a root with exactly one child, a child of a joint with several children, and the
-  // child across a zero-length bone (which cuts a chain).
-  std::vector<bool> head(n, false);
-  for (std::size_t j = 0; j < n; ++j) {
-    const Index p = rig.parents[j];
-    if (p < 0) {
-      head[j] = true;
-    } else {
-      head[j] = children[static_cast<std::size_t>(p)].size() >= 2 || !bone_ok(p, Index(j));
-    }
-  }
-  chain_of_.assign(n, -1);
-  bone_of_.assign(n, -1);
-  for (std::size_t j0 = 0; j0 < n; ++j0) {
-    if (!head[j0] || children[j0].size() != 1 || !bone_ok(Index(j0), children[j0][0])) continue;
+void SweepDeformer::MakeChains(const std::vector<SweepChain>& chains) {
+  chain_of_.assign(joints_, -1);
+  bone_of_.assign(joints_, -1);
+  for (const SweepChain& sc : chains) {
     Chain c;
-    c.joints.push_back(Index(j0));
-    Index cur = Index(j0);
-    while (children[static_cast<std::size_t>(cur)].size() == 1) {
-      const Index next = children[static_cast<std::size_t>(cur)][0];
-      if (!bone_ok(cur, next)) break;
-      c.joints.push_back(next);
-      cur = next;
-    }
-    // The last joint has no bone of its own: its vertices (a hand, a head) ride with it by the
-    // DQS fallback, while its twist still spreads along the chain's last bone.
+    c.joints = sc.joints;
+    // A virtual end moves with the last joint: it repeats that joint.
+    if (sc.virtual_end) c.joints.push_back(sc.joints.back());
     const int id = static_cast<int>(chains_.size());
-    const std::size_t bones = c.joints.size() - 1;
+    const std::size_t nj = c.joints.size(), bones = nj - 1;
     for (std::size_t i = 0; i < bones; ++i) {
       chain_of_[static_cast<std::size_t>(c.joints[i])] = id;
       bone_of_[static_cast<std::size_t>(c.joints[i])] = static_cast<int>(i);
     }
-    const std::size_t nj = c.joints.size();
     c.s.assign(nj, 0.0);
     c.len.assign(bones, 0.0);
     c.t0.assign(bones, Vec3(0.0));
     for (std::size_t i = 0; i < bones; ++i) {
-      const Vec3 d = bind_position_[static_cast<std::size_t>(c.joints[i + 1])] -
-                     bind_position_[static_cast<std::size_t>(c.joints[i])];
+      const Vec3 d = sc.points[i + 1] - sc.points[i];
       c.len[i] = glm::length(d);
       c.t0[i] = d / c.len[i];
       c.s[i + 1] = c.s[i] + c.len[i];
@@ -325,13 +332,12 @@ void SweepDeformer::MakeChains(const SkinRig& rig) {
     c.h_base.assign(nj, 0.0);
     c.h_max.assign(nj, 0.0);
     c.w.assign(nj, 0.0);
+    c.reach.assign(nj, 0.0);
     c.tau.assign(nj, 0.0);
     c.k.assign(nj, 0.0);
     c.rest.Resize(nj);
     c.pose.Resize(nj);
-    for (std::size_t i = 0; i < nj; ++i) {
-      c.rest.p[i] = bind_position_[static_cast<std::size_t>(c.joints[i])];
-    }
+    for (std::size_t i = 0; i < nj; ++i) c.rest.p[i] = sc.points[i];
     chains_.push_back(std::move(c));
   }
 }
@@ -349,62 +355,93 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
       !(o.blend_threshold >= 0.0)) {
     return Status::InvalidInput("sweep: options out of range");
   }
-  const Status s = ValidateRig(rig, influences, count, "sweep");
+  std::vector<SweepChain> chains;
+  const Status s = BuildSweepChains(rig, rest, influences, count, o, &chains);
   if (!s.ok()) return s;
   rest_.assign(rest, rest + count);
   if (normals != nullptr) normals_.assign(normals, normals + count);
   weights_.assign(influences, influences + count);
   dq_.resize(joints_);
   stretch_.assign(joints_, glm::dmat3(1.0));
-  bind_position_.resize(joints_);
   pose_rotation_.assign(joints_, glm::dquat(1.0, 0.0, 0.0, 0.0));
   joint_scale_.assign(joints_, 1.0);
-  for (std::size_t j = 0; j < joints_; ++j) {
-    bind_position_[j] = Vec3(rig.bind[j][3]);
-  }
-  MakeChains(rig);
+  joint_skew_.assign(joints_, 0.0);
+  MakeChains(chains);
 
   // Blend half-lengths from the vertices around each joint: the 90th percentile of their
-  // distance to the bone polyline (the skin, not the inside), capped per bone length.
-  std::vector<std::vector<std::vector<double>>> near(chains_.size());
-  for (std::size_t ci = 0; ci < chains_.size(); ++ci) near[ci].resize(chains_[ci].joints.size());
+  // distance to the bone polyline (the skin, not the inside), and, with follow_weights, at
+  // least the 90th percentile of the distance along the chain of the vertices the joint shares
+  // with the joint before it (each holding at least a tenth of their two weights: the painted
+  // transition), capped per bone length.
+  std::vector<std::vector<std::vector<double>>> near(chains_.size()), mixed(chains_.size()),
+      past(chains_.size());
+  for (std::size_t ci = 0; ci < chains_.size(); ++ci) {
+    near[ci].resize(chains_[ci].joints.size());
+    mixed[ci].resize(chains_[ci].joints.size());
+    past[ci].resize(chains_[ci].joints.size());
+  }
+  auto closest = [&](const Chain& c, const Vec3& x, double* dist, double* arc) {
+    *dist = std::numeric_limits<double>::max();
+    *arc = 0.0;
+    for (std::size_t i = 0; i < c.bones(); ++i) {
+      const Vec3 p0 = c.rest.p[i];
+      const double f = std::clamp(glm::dot(x - p0, c.t0[i]) / c.len[i], 0.0, 1.0);
+      const double d = glm::length(x - (p0 + f * c.len[i] * c.t0[i]));
+      if (d < *dist) *dist = d, *arc = c.s[i] + f * c.len[i];
+    }
+  };
   for (std::size_t v = 0; v < count; ++v) {
     const glm::dvec4 w = deform::NormalizedWeights(influences[v]);
+    int seen[4] = {-1, -1, -1, -1};
     for (int k = 0; k < 4; ++k) {
       if (!(w[k] > 0.0)) continue;
       const std::size_t j = influences[v].joints[k];
       const int ci = chain_of_[j];
       if (ci < 0) continue;
       const Chain& c = chains_[static_cast<std::size_t>(ci)];
-      // Distance to the polyline and the arc length of the closest point.
-      double best = std::numeric_limits<double>::max(), best_s = 0.0;
-      for (std::size_t i = 0; i < c.bones(); ++i) {
-        const Vec3 p0 = c.rest.p[i];
-        double f = glm::dot(rest[v] - p0, c.t0[i]) / c.len[i];
-        f = std::clamp(f, 0.0, 1.0);
-        const double d = glm::length(rest[v] - (p0 + f * c.len[i] * c.t0[i]));
-        if (d < best) best = d, best_s = c.s[i] + f * c.len[i];
-      }
+      double best = 0.0, best_s = 0.0;
+      closest(c, rest[v], &best, &best_s);
       for (std::size_t jj = 1; jj + 1 < c.joints.size(); ++jj) {
         const double reach = 0.5 * std::min(c.len[jj - 1], c.len[jj]);
         if (std::fabs(best_s - c.s[jj]) <= reach) near[ci][jj].push_back(best);
       }
+      // The painted transitions, once per chain.
+      if (std::find(seen, seen + 4, ci) != seen + 4) continue;
+      seen[k] = ci;
+      for (std::size_t jj = 1; jj < c.joints.size(); ++jj) {
+        if (c.joints[jj] == c.joints[jj - 1]) continue;  // a virtual end
+        double a = 0.0, b = 0.0;
+        for (int q = 0; q < 4; ++q) {
+          if (influences[v].joints[q] == static_cast<std::size_t>(c.joints[jj - 1])) a += w[q];
+          if (influences[v].joints[q] == static_cast<std::size_t>(c.joints[jj])) b += w[q];
+        }
+        if (a > 0.0 && b > 0.0 && std::min(a, b) >= 0.1 * (a + b)) {
+          mixed[ci][jj].push_back(std::fabs(best_s - c.s[jj]));
+          if (best_s > c.s[jj]) past[ci][jj].push_back(best_s - c.s[jj]);
+        }
+      }
     }
   }
+  auto percentile90 = [](std::vector<double>* r) {
+    std::sort(r->begin(), r->end());
+    return (*r)[std::min(r->size() - 1,
+                         static_cast<std::size_t>(0.9 * static_cast<double>(r->size())))];
+  };
   for (std::size_t ci = 0; ci < chains_.size(); ++ci) {
     Chain& c = chains_[ci];
     for (std::size_t j = 1; j + 1 < c.joints.size(); ++j) {
-      std::vector<double>& r = near[ci][j];
       const double shorter = std::min(c.len[j - 1], c.len[j]);
-      double radius = 0.1 * shorter;
-      if (!r.empty()) {
-        std::sort(r.begin(), r.end());
-        radius = r[std::min(r.size() - 1,
-                            static_cast<std::size_t>(0.9 * static_cast<double>(r.size())))];
-      }
+      const double radius = near[ci][j].empty() ? 0.1 * shorter : percentile90(&near[ci][j]);
       c.radius[j] = radius;
       c.h_max[j] = o.max_blend_fraction * shorter;
-      c.h_base[j] = std::min(o.blend_radius_factor * radius, c.h_max[j]);
+      double h = o.blend_radius_factor * radius;
+      if (o.follow_weights && !mixed[ci][j].empty()) h = std::max(h, percentile90(&mixed[ci][j]));
+      // The joint's twist ramps in from the joint before; with follow_weights it finishes past
+      // the joint where the painted transition reaches (within the bone after it).
+      if (o.follow_weights && !past[ci][j].empty()) {
+        c.reach[j] = std::min(percentile90(&past[ci][j]), c.len[j]);
+      }
+      c.h_base[j] = std::min(h, c.h_max[j]);
       if (o.preserve_volume && c.h_base[j] > 0.0) {
         // Wide enough for the largest blend zone, not past the chain's ends.
         c.w[j] = std::max(o.volume_width_factor * c.h_base[j], c.h_max[j]);
@@ -417,19 +454,24 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
 
   // Bind every vertex.
   first_.assign(count + 1, 0);
-  rest_share_.assign(count, 0.0);
+  loose_.assign(count, LooseWeights{});
+  direct_.assign(count, 0);
   for (std::size_t v = 0; v < count; ++v) {
     first_[v] = static_cast<std::uint32_t>(bindings_.size());
     const VertexWeights& iw = influences[v];
     const glm::dvec4 w = deform::NormalizedWeights(iw);
-    // Share of each chain.
+    // Share of each chain, and the weight of joints on no chain.
     int ids[4] = {-1, -1, -1, -1};
     double share[4] = {0, 0, 0, 0};
     int used = 0;
+    bool outside = false;
     for (int k = 0; k < 4; ++k) {
       if (!(w[k] > 0.0)) continue;
       const int ci = chain_of_[iw.joints[k]];
-      if (ci < 0) continue;
+      if (ci < 0) {
+        outside = true;
+        continue;
+      }
       int slot = 0;
       while (slot < used && ids[slot] != ci) ++slot;
       if (slot == used) ids[used++] = ci;
@@ -438,21 +480,36 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
     int best = -1;
     for (int q = 0; q < used; ++q)
       if (best < 0 || share[q] > share[best]) best = q;
-    double kept = 0.0;
+    // One chain with the whole weight (or at least single_chain_threshold of it): the sweep's
+    // point alone. Otherwise every chain holding more than blend_threshold is bound and blended.
+    const bool single =
+        best >= 0 && ((used == 1 && !outside) || share[best] >= o.single_chain_threshold);
+    LooseWeights& loose = loose_[v];
+    int loose_used = 0;
+    for (int k = 0; k < 4 && !single; ++k) {
+      if (!(w[k] > 0.0)) continue;
+      const int ci = chain_of_[iw.joints[k]];
+      int slot = 0;
+      while (slot < used && ids[slot] != ci) ++slot;
+      if (ci >= 0 && share[slot] > o.blend_threshold) continue;
+      loose.joints[loose_used] = iw.joints[k];
+      loose.weights[loose_used] = w[k];
+      ++loose_used;
+    }
+    double total = 0.0;
+    for (int k = 0; k < loose_used; ++k) total += loose.weights[k];
     for (int q = 0; q < used; ++q) {
-      const bool single = best >= 0 && share[best] >= o.single_chain_threshold;
       if (single ? q != best : share[q] <= o.blend_threshold) continue;
       const double weight = single ? 1.0 : share[q];
-      kept += weight;
+      total += weight;
       const Chain& c = chains_[static_cast<std::size_t>(ids[q])];
       // Allowed arc-length ranges: the bones this chain's joints weight the vertex to.
       double best_d = std::numeric_limits<double>::max(), best_s = 0.0;
       for (int k = 0; k < 4; ++k) {
         if (!(w[k] > 0.0) || chain_of_[iw.joints[k]] != ids[q]) continue;
         const int bone = bone_of_[iw.joints[k]];
-        double lo = c.s[static_cast<std::size_t>(std::min<int>(bone, int(c.bones())))];
-        double hi =
-            bone < static_cast<int>(c.bones()) ? c.s[static_cast<std::size_t>(bone) + 1] : lo;
+        const double lo = c.s[static_cast<std::size_t>(bone)];
+        const double hi = c.s[static_cast<std::size_t>(bone) + 1];
         const int samples = 4 * o.stations_per_bone;
         auto dist = [&](double sv) {
           Vec3 p, t;
@@ -497,22 +554,36 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
       const Vec3 t_start = c.t0[0];
       bind.axial = glm::dot(off, t_start) * t_start;
       bind.radial = off - bind.axial;
+      bind.rest_back = back;
       if (normals != nullptr) bind.normal = back * normals[v];
+      // Twist at s (docs/notes/sweep.md 1.2): each joint's increment over the joint before ramps in
+      // linearly from that joint to the joint itself, or on to its painted transition's reach
+      // past it; the fully ramped joints are a prefix, at most two are partly ramped at s.
+      // And the volume bumps reaching s. Both are constant per binding.
+      int partial = 0;
+      for (std::size_t j = 1; j < c.joints.size(); ++j) {
+        const double f = std::clamp((best_s - c.s[j - 1]) / (c.len[j - 1] + c.reach[j]), 0.0, 1.0);
+        if (f >= 1.0) {
+          bind.twist_full = static_cast<std::uint16_t>(j);
+        } else if (f > 0.0 && partial < 2) {
+          bind.twist_joint[partial] = static_cast<std::uint16_t>(j);
+          bind.twist_share[partial++] = f;
+        }
+      }
+      bind.bump_first = static_cast<std::uint32_t>(bumps_.size());
+      for (std::size_t j = 1; j + 1 < c.joints.size(); ++j) {
+        const double beta = Bump(best_s - c.s[j], c.w[j]);
+        if (beta > 0.0) bumps_.push_back(BumpTerm{static_cast<std::uint16_t>(j), beta});
+      }
+      bind.bump_count = static_cast<std::uint16_t>(bumps_.size() - bind.bump_first);
       bindings_.push_back(bind);
     }
-    rest_share_[v] = std::max(0.0, 1.0 - kept);
-    if (rest_share_[v] < 1e-9) rest_share_[v] = 0.0;
+    // Weights scaled to sum 1 (a single chain drops the other chains' small shares).
+    for (int k = 0; k < loose_used; ++k) loose.weights[k] /= total;
+    for (std::uint32_t q = first_[v]; q < bindings_.size(); ++q) bindings_[q].weight /= total;
+    direct_[v] = bindings_.size() - first_[v] == 1 && loose_used == 0 ? 1 : 0;
   }
   first_[count] = static_cast<std::uint32_t>(bindings_.size());
-  // Normalise binding weights with the rest share so they sum to 1.
-  for (std::size_t v = 0; v < count; ++v) {
-    double sum = rest_share_[v];
-    for (std::uint32_t q = first_[v]; q < first_[v + 1]; ++q) sum += bindings_[q].weight;
-    if (sum > 0.0) {
-      rest_share_[v] /= sum;
-      for (std::uint32_t q = first_[v]; q < first_[v + 1]; ++q) bindings_[q].weight /= sum;
-    }
-  }
   for (Chain& c : chains_) {
     c.pose = c.rest;
     c.prev_tau.reserve(c.joints.size());
@@ -534,28 +605,35 @@ Status SweepDeformer::SetPose(const glm::dmat4* m) {
   has_stretch_ = stretch;
   for (std::size_t j = 0; j < joints_; ++j) {
     pose_rotation_[j] = dq_[j].real;
-    // The sweep moves rigid frames, scaled uniformly at most (an armature's unit scale).
+    // The sweep moves rigid frames, scaled uniformly at most (an armature's unit scale): the
+    // joint's mean scale and how far its stretch is from uniform (relative).
     const glm::dmat3& st = stretch_[j];
     const double lambda = (st[0][0] + st[1][1] + st[2][2]) / 3.0;
     double off = 0.0;
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
         off = std::max(off, std::fabs(st[a][b] - (a == b ? lambda : 0.0)));
-    joint_scale_[j] =
-        lambda > 0.0 && off <= 1e-6 * lambda ? lambda : std::numeric_limits<double>::quiet_NaN();
+    joint_scale_[j] = lambda;
+    joint_skew_[j] = lambda > 0.0 ? off / lambda : std::numeric_limits<double>::infinity();
   }
   for (Chain& c : chains_) {
     const std::size_t nj = c.joints.size(), n = c.bones();
     for (std::size_t i = 0; i < nj; ++i) {
       const std::size_t j = static_cast<std::size_t>(c.joints[i]);
-      c.pose.p[i] = Vec3(m[j] * glm::dvec4(bind_position_[j], 1.0));
+      c.pose.p[i] = Vec3(m[j] * glm::dvec4(c.rest.p[i], 1.0));
     }
-    c.scale = joint_scale_[static_cast<std::size_t>(c.joints[0])];
-    c.usable = std::isfinite(c.scale);
+    // A chain whose joints stretch non-uniformly, or unevenly, has no sweep: its vertices go to
+    // DQS, blended in smoothly from a relative unevenness of 1e-4 (float noise in a clip's
+    // matrices stays swept) to 1e-2 (a squash and stretch is DQS), so no frame jumps.
+    const double l0 = joint_scale_[static_cast<std::size_t>(c.joints[0])];
+    double uneven = l0 > 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
     for (const Index j : c.joints) {
-      const double js = joint_scale_[static_cast<std::size_t>(j)];
-      if (!(std::fabs(js - c.scale) <= 1e-6 * c.scale)) c.usable = false;
+      const std::size_t ju = static_cast<std::size_t>(j);
+      uneven = std::max({uneven, joint_skew_[ju], std::fabs(joint_scale_[ju] / l0 - 1.0)});
     }
+    const double ramp = std::clamp((uneven - 1e-4) / (1e-2 - 1e-4), 0.0, 1.0);
+    c.dqs_share = std::isfinite(uneven) ? ramp * ramp * (3.0 - 2.0 * ramp) : 1.0;
+    c.scale = l0 > 0.0 ? l0 : 1.0;
     BuildGeom(c, options_.grow_blend_with_bend, &c.pose);
     c.q0 = pose_rotation_[static_cast<std::size_t>(c.joints[0])];
     // Twists: the residue of each joint's rotation against the transported frame.
@@ -597,21 +675,24 @@ Status SweepDeformer::SetPose(const glm::dmat4* m) {
   return Status::Ok();
 }
 
-Vec3 SweepDeformer::EvalBinding(const Binding& b, Vec3* normal) const {
+void SweepDeformer::EvalBinding(const Binding& b, Vec3* x_out, glm::dquat* rotation, Vec3* rigid,
+                                Vec3* normal) const {
   const Chain& c = chains_[b.chain];
   const std::size_t n = c.bones();
   Vec3 pos, tangent;
   glm::dquat transport;
   EvalTrajectory(c, c.pose, b.s, &pos, &tangent, &transport);
-  // Twist, linear in s between the joints.
-  const double s = std::clamp(b.s, 0.0, c.length());
-  std::size_t i = 0;
-  while (i + 1 < n && s >= c.s[i + 1]) ++i;
-  const double f = (s - c.s[i]) / c.len[i];
-  const double twist = c.tau[i] + (c.tau[i + 1] - c.tau[i]) * std::clamp(f, 0.0, 1.0);
+  // Twist: the ramps precomputed at binding (with no reach past the joints, linear in s
+  // between them as in docs/notes/sweep.md 1.2).
+  double twist = c.tau[b.twist_full];
+  for (int q = 0; q < 2; ++q) {
+    const std::size_t j = b.twist_joint[q];
+    if (j != 0) twist += b.twist_share[q] * (c.tau[j] - c.tau[j - 1]);
+  }
   double sigma = 1.0;
-  for (std::size_t j = 1; j + 1 < c.joints.size(); ++j)
-    sigma += c.k[j] * Bump(b.s - c.s[j], c.w[j]);
+  for (std::uint32_t q = b.bump_first; q < b.bump_first + b.bump_count; ++q) {
+    sigma += c.k[bumps_[q].joint] * bumps_[q].beta;
+  }
   const glm::dquat g = glm::angleAxis(twist, tangent) * transport * c.q0;
   Vec3 x = pos + c.scale * (g * (b.axial + sigma * b.radial));
   if (options_.clamp_folds) {
@@ -623,8 +704,84 @@ Vec3 SweepDeformer::EvalBinding(const Binding& b, Vec3* normal) const {
       if ((before && d > 0.0) || (!before && d < 0.0)) x -= d * c.pose.bisector[j];
     }
   }
+  *x_out = x;
+  if (rotation != nullptr) {
+    *rotation = g * b.rest_back;
+    *rigid = pos + c.scale * (g * (b.axial + b.radial));
+  }
   if (normal != nullptr) *normal = g * b.normal;
-  return x;
+}
+
+void SweepDeformer::Blend(std::size_t v, Vec3* position, Vec3* normal) const {
+  // Up to 4 chains and 4 loose joints.
+  glm::dquat real[8], dual[8];
+  double weight[8];
+  int terms = 0;
+  // Two-phase: the chains' uniform scales and the loose joints' stretches, blended linearly.
+  double scale = 0.0;
+  glm::dmat3 stretch(0.0);
+  bool stretched = false;
+  Vec3 correction(0.0);
+  const Vec3& x0 = rest_[v];
+  for (std::uint32_t q = first_[v]; q < first_[v + 1]; ++q) {
+    const Binding& b = bindings_[q];
+    const double lambda = chains_[b.chain].scale;
+    Vec3 x, rigid;
+    glm::dquat r;
+    EvalBinding(b, &x, &r, &rigid, nullptr);
+    // The frame carries the rest offset rigidly: rigid = r (lambda x0) + t.
+    const Vec3 t = rigid - lambda * (r * x0);
+    real[terms] = r;
+    dual[terms] = 0.5 * (glm::dquat(0.0, t.x, t.y, t.z) * r);
+    weight[terms++] = b.weight;
+    scale += b.weight * lambda;
+    stretched = stretched || lambda != 1.0;
+    correction += b.weight * (x - rigid);
+  }
+  const LooseWeights& lw = loose_[v];
+  for (int k = 0; k < 4; ++k) {
+    if (!(lw.weights[k] > 0.0)) continue;
+    const std::size_t j = lw.joints[k];
+    real[terms] = dq_[j].real;
+    dual[terms] = dq_[j].dual;
+    weight[terms++] = lw.weights[k];
+    if (has_stretch_) {
+      stretch += lw.weights[k] * stretch_[j];
+      stretched = true;
+    } else {
+      scale += lw.weights[k];
+    }
+  }
+  int pivot = 0;
+  for (int k = 1; k < terms; ++k)
+    if (weight[k] > weight[pivot]) pivot = k;
+  glm::dquat br(0.0, 0.0, 0.0, 0.0), bd(0.0, 0.0, 0.0, 0.0);
+  double total = 0.0;
+  for (int k = 0; k < terms; ++k) {
+    const double sign = glm::dot(real[k], real[pivot]) < 0.0 ? -1.0 : 1.0;
+    br = br + (sign * weight[k]) * real[k];
+    bd = bd + (sign * weight[k]) * dual[k];
+    total += weight[k];
+  }
+  const double len = glm::length(br);
+  deform::DualQuat blended;
+  blended.real = br / len;
+  blended.dual = bd / len;
+  Vec3 x = x0;
+  if (stretched) {
+    for (int c = 0; c < 3; ++c) stretch[c][c] += scale;
+    stretch /= total;
+    x = stretch * x;
+  }
+  *position = blended.real * x + deform::Translation(blended) + correction;
+  if (normal != nullptr) {
+    Vec3 nn = normals_[v];
+    if (stretched)
+      nn = deform::Cofactor(stretch) * nn * (glm::determinant(stretch) < 0.0 ? -1.0 : 1.0);
+    nn = blended.real * nn;
+    const double l = glm::length(nn);
+    *normal = l > 0.0 ? nn / l : normals_[v];
+  }
 }
 
 void SweepDeformer::Deform(std::size_t begin, std::size_t end, Vec3* positions,
@@ -633,34 +790,34 @@ void SweepDeformer::Deform(std::size_t begin, std::size_t end, Vec3* positions,
   const bool want_normals = normals != nullptr && has_normals_;
   for (std::size_t v = begin; v < end; ++v) {
     // A chain stretched non-uniformly (a joint scaled to hide a part, say) has no sweep: the
-    // vertex is deformed by DQS, whose two-phase blend follows any scale.
-    bool sweep = true;
+    // vertex is deformed by DQS, whose two-phase blend follows any scale (blended in smoothly).
+    double dqs = 0.0;
     for (std::uint32_t q = first_[v]; q < first_[v + 1]; ++q) {
-      if (!chains_[bindings_[q].chain].usable) sweep = false;
+      dqs = std::max(dqs, chains_[bindings_[q].chain].dqs_share);
     }
-    if (!sweep) {
-      deform::DqsPoint(dq_.data(), stretch_.data(), has_stretch_, weights_[v], rest_[v],
-                       want_normals ? normals_[v] : Vec3(0.0), &positions[v],
-                       want_normals ? &normals[v] : nullptr);
-      continue;
-    }
-    Vec3 x(0.0), nsum(0.0);
-    for (std::uint32_t q = first_[v]; q < first_[v + 1]; ++q) {
-      Vec3 nn(0.0);
-      x += bindings_[q].weight * EvalBinding(bindings_[q], want_normals ? &nn : nullptr);
-      nsum += bindings_[q].weight * nn;
-    }
-    if (rest_share_[v] > 0.0) {
-      Vec3 xd, nd;
+    Vec3 xd(0.0), nd(0.0);
+    if (dqs > 0.0) {
       deform::DqsPoint(dq_.data(), stretch_.data(), has_stretch_, weights_[v], rest_[v],
                        want_normals ? normals_[v] : Vec3(0.0), &xd, want_normals ? &nd : nullptr);
-      x += rest_share_[v] * xd;
-      if (want_normals) nsum += rest_share_[v] * nd;
+      if (dqs >= 1.0) {
+        positions[v] = xd;
+        if (want_normals) normals[v] = nd;
+        continue;
+      }
     }
-    positions[v] = x;
-    if (want_normals) {
-      const double l = glm::length(nsum);
-      normals[v] = l > 0.0 ? nsum / l : nsum;
+    if (direct_[v]) {
+      EvalBinding(bindings_[first_[v]], &positions[v], nullptr, nullptr,
+                  want_normals ? &normals[v] : nullptr);
+    } else {
+      Blend(v, &positions[v], want_normals ? &normals[v] : nullptr);
+    }
+    if (dqs > 0.0) {
+      positions[v] += dqs * (xd - positions[v]);
+      if (want_normals) {
+        const Vec3 nn = normals[v] + dqs * (nd - normals[v]);
+        const double l = glm::length(nn);
+        normals[v] = l > 0.0 ? nn / l : nd;
+      }
     }
   }
 }

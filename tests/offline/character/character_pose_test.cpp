@@ -283,8 +283,15 @@ TEST_CASE("character pose: the two cylinders bent at the joint") {
     INFO("rigid vertices " << rigid[0] << " + " << rigid[1] << " of " << prim.positions.size());
     CHECK(rigid[0] > 20);
     CHECK(rigid[1] > 20);
-    CHECK(rigid_worst < 1e-9);
-    CHECK(lbs_worst < 1e-9);
+    if (kind != DeformerKind::kSweep) {
+      CHECK(rigid_worst < 1e-9);
+      CHECK(lbs_worst < 1e-9);
+    } else {
+      // The sweep moves rigidly only outside its blend and volume zones (deformer_test.cpp);
+      // on these short capsules (bones of 1, radius 0.5) the leaf j1's virtual bone gives the
+      // joint an arc and a volume bump that span them whole: near-rigid, not rigid.
+      CHECK(rigid_worst < 0.02);
+    }
     // Joint-ring thickness in the bend's plane: LBS collapses it by cos 45 degrees.
     const double thick = glm::length(inner - outer);
     thickness[static_cast<int>(kind)] = thick;

@@ -140,6 +140,16 @@ struct SweepOptions {
   /// shorter adjacent bone.
   double blend_radius_factor = 1.0;
   double max_blend_fraction = 0.49;
+  /// The blend half-length is also at least the reach of the joint's painted transition: the
+  /// 90th percentile of the distance along the chain from the joint of the vertices it shares
+  /// with the joint before it (each of the two holding at least a tenth of their weight).
+  bool follow_weights = true;
+  /// A joint whose largest blend zone would fold the skin (arc radius below the skin radius)
+  /// at a bend below this angle (radians) or below its rest bend is not swept through: its
+  /// chain is cut there and the skin around it blends the two chains' frames (a torso or neck
+  /// on short spine bones, a thick tail). Default 60 degrees: bones shorter than about 1.2
+  /// times the skin radius (max_blend_fraction 0.49).
+  double min_fold_angle = 1.0471975511965976;
   /// Let the blend half-length grow with the bend as 1.1 r tan(theta / 2), so the arc radius
   /// stays above the skin radius and cross sections do not cross inside the bend (up to the
   /// cap above).
@@ -151,17 +161,20 @@ struct SweepOptions {
   /// Clamp vertices on the inside of a bend against the joint's bisector plane.
   bool clamp_folds = true;
   /// A vertex is bound to a single chain when that chain holds at least this share of its
-  /// weight; otherwise to each chain holding more than blend_threshold (shape blending).
+  /// weight; otherwise to each chain holding more than blend_threshold, their frames blended as
+  /// dual quaternions with the joints of the smaller shares (by their own rigid transforms).
   double single_chain_threshold = 0.95;
   double blend_threshold = 0.05;
 };
 
 /// The sweep deformer: chains of the skeleton become sweeps (a trajectory through the joints,
 /// circular-arc blended at interior joints; rotation-minimising frames with the joints' twists
-/// spread linearly along each bone and unwrapped against the previous frame); each vertex is
-/// bound once, in the bind pose, to the sweeps of the chains its weights name (parameter and
-/// cross-section coordinates) and blended by those weights; joints on no chain (branch joints
-/// such as pelvis or chest, and their weight share) fall back to dual-quaternion skinning.
+/// spread along each bone and unwrapped against the previous frame). Every joint that carries
+/// skin owns a bone (BuildSweepChains(): branch joints continue straight ahead, a skinned last
+/// joint gets a virtual end bone along its vertices). Each vertex is bound once, in the bind
+/// pose, to the sweeps of the chains its weights name (parameter and cross-section
+/// coordinates); a vertex of several chains blends their rigid frames at its points as dual
+/// quaternions (plus their volume and fold corrections by weight), never their positions.
 /// Twist unwrapping makes SetPose() stateful: call ResetHistory() before jumping to a pose
 /// unrelated to the previous one (twists are then taken the short way, within +-180 degrees).
 Status MakeSweepDeformer(const SkinRig& rig, const Vec3* rest_positions, const Vec3* rest_normals,
