@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake libeigen3-dev libglm-dev catch2 libcli11-dev libmeshoptimizer-dev
           nlohmann-json3-dev libtinygltf-dev libassimp-dev pkg-config libosd-dev
-          libstb-dev)
+          libstb-dev liblemon-dev)
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

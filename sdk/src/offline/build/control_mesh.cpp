@@ -200,6 +200,22 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& reque
         " control vertices is more than the " + std::to_string(full) +
         " that splitting the whole mesh gives; use a smaller --control-vertices");
   }
+  if (options.method == ControlMeshMethod::kRemesh) {
+    QuadRemeshOptions ro = options.remesh;
+    ro.target_vertices = options.target_vertices;
+    PolygonMesh remeshed;
+    QuadRemeshReport rr;
+    const Status rs = QuadRemesh(x, welded, where, ro, &remeshed, &rr);
+    if (rs.ok()) {
+      inf.method = "remesh";
+      inf.quality = rr;
+      inf.max_valence = rr.max_valence;
+      *control = std::move(remeshed);
+      return Status::Ok();
+    }
+    inf.fallback = rs.message();
+  }
+  inf.method = "simplify";
   // Find the triangle count whose split is closest to the target (V + E + F ~ 3 F), among
   // simplifications that stay manifold and consistently oriented after the valence flips
   // (meshopt_simplify can pinch thin parts of low-poly meshes into non-manifold edges).
@@ -350,9 +366,9 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& reque
   }
   s = ValidatePolygonMesh(out);
   if (!s.ok()) return s;
-  std::vector<int> val(out.positions.size(), 0);
-  for (Index i : out.face_vertices) ++val[i];
-  inf.max_valence = *std::max_element(val.begin(), val.end());
+  inf.quality.target_vertices = options.target_vertices;
+  MeasureQuadMesh(out, &inf.quality);
+  inf.max_valence = inf.quality.max_valence;
   *control = std::move(out);
   return Status::Ok();
 }
