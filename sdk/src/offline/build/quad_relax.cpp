@@ -159,7 +159,7 @@ Status RelaxQuadMesh(const ReferenceSurface& reference, const SizingField& sizin
     }
   }
   // Untangling: a face that is not convex or faces against all its neighbours moves its corners
-  // to the mean of their edge neighbours, projected back (at most 10 rounds).
+  // to better places, projected back (at most 30 rounds).
   std::vector<std::vector<Index>> ring(nv);
   for (const auto& d : directed) {
     ring[static_cast<std::size_t>(d[0])].push_back(d[1]);
@@ -169,7 +169,7 @@ Status RelaxQuadMesh(const ReferenceSurface& reference, const SizingField& sizin
     std::sort(r.begin(), r.end());
     r.erase(std::unique(r.begin(), r.end()), r.end());
   }
-  for (int round = 0; round < 10; ++round) {
+  for (int round = 0; round < 30; ++round) {
     std::vector<Vec3> normal(static_cast<std::size_t>(m.num_faces()));
     for (Index f = 0; f < m.num_faces(); ++f)
       normal[static_cast<std::size_t>(f)] = FaceNormal(m, f);
@@ -206,21 +206,58 @@ Status RelaxQuadMesh(const ReferenceSurface& reference, const SizingField& sizin
             normal[static_cast<std::size_t>(f)];
       }
     }
+    // Non-convex faces around v with v at `p`.
+    auto bad_around = [&](std::size_t v, const Vec3& p) {
+      const Vec3 keep = m.positions[v];
+      m.positions[v] = p;
+      int bad = 0;
+      for (Index f : faces_of[v]) bad += Convex(m, f, FaceNormal(m, f)) ? 0 : 1;
+      m.positions[v] = keep;
+      return bad;
+    };
     for (std::size_t v = 0; v < nv; ++v) {
       if (!marked[v]) continue;
-      if (next[v] != kInvalidIndex) {
+      // Candidates: the mean of the edge neighbours (or half way along the loop for a boundary
+      // vertex), and for every face where v's corner is reflex the point that makes that face a
+      // parallelogram; each projected back. The one leaving fewest non-convex faces wins (the
+      // mean on ties, and the mean if none improves, so the smoothing still progresses).
+      std::vector<Vec3> candidates;
+      const bool on_boundary = next[v] != kInvalidIndex;
+      if (on_boundary) {
         if (prev[v] == kInvalidIndex || loop[v] < 0) continue;
-        m.positions[v] =
+        candidates.push_back(
             reference.LoopBetween(loop[v], m.positions[static_cast<std::size_t>(prev[v])],
-                                  m.positions[static_cast<std::size_t>(next[v])], 0.5);
-        continue;
+                                  m.positions[static_cast<std::size_t>(next[v])], 0.5));
+      } else {
+        Vec3 c(0.0), n(0.0);
+        for (Index w : ring[v]) {
+          c += m.positions[static_cast<std::size_t>(w)], n += vn[static_cast<std::size_t>(w)];
+        }
+        c /= static_cast<double>(std::max<std::size_t>(ring[v].size(), 1));
+        const double l = glm::length(n);
+        const Vec3 nu = l > 0.0 ? n / l : n;
+        candidates.push_back(reference.Project(c, nu, size[v]).point);
+        for (Index f : faces_of[v]) {
+          const Index b = m.face_offsets[static_cast<std::size_t>(f)], sz = m.face_size(f);
+          if (sz != 4) continue;
+          Index k = 0;
+          while (m.face_vertices[static_cast<std::size_t>(b + k)] != static_cast<Index>(v)) ++k;
+          auto at = [&](Index i) -> const Vec3& {
+            return m.positions[static_cast<std::size_t>(
+                m.face_vertices[static_cast<std::size_t>(b + (i + sz) % sz)])];
+          };
+          candidates.push_back(
+              reference.Project(at(k - 1) + at(k + 1) - at(k + 2), nu, size[v]).point);
+        }
       }
-      Vec3 c(0.0), n(0.0);
-      for (Index w : ring[v])
-        c += m.positions[static_cast<std::size_t>(w)], n += vn[static_cast<std::size_t>(w)];
-      c /= static_cast<double>(std::max<std::size_t>(ring[v].size(), 1));
-      const double l = glm::length(n);
-      m.positions[v] = reference.Project(c, l > 0.0 ? n / l : n, size[v]).point;
+      const int now = bad_around(v, m.positions[v]);
+      std::size_t best = 0;
+      int best_bad = bad_around(v, candidates[0]);
+      for (std::size_t i = 1; i < candidates.size(); ++i) {
+        const int b = bad_around(v, candidates[i]);
+        if (b < best_bad) best = i, best_bad = b;
+      }
+      if (best_bad <= now || best == 0) m.positions[v] = candidates[best];
     }
   }
   if (rejected) *rejected = undone;

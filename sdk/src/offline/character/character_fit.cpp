@@ -96,8 +96,8 @@ VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalP
 }
 
 /// Extra data points inside the triangles, so the surface follows the source between its
-/// vertices: a barycentric grid of about `spacing` in every triangle longer than that, interior
-/// points only (the vertices are data already).
+/// vertices: a barycentric grid of about `spacing` in every triangle longer than twice that,
+/// interior points only (the vertices are data already).
 std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing) {
   std::vector<Vec3> out;
   if (!(spacing > 0.0)) return out;
@@ -106,7 +106,7 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing) {
     const Vec3 &a = mesh.positions[v[0]], &b = mesh.positions[v[1]], &c = mesh.positions[v[2]];
     const double longest =
         std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
-    if (!(longest > spacing)) continue;
+    if (!(longest > 2.0 * spacing)) continue;
     const int n = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
     for (int i = 1; i < n; ++i) {
       for (int j = 1; i + j < n; ++j) {

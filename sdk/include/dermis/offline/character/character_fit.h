@@ -49,7 +49,7 @@ struct CharacterFitOptions {
   /// Data points inside the triangles: a barycentric grid whose spacing is the control mesh's
   /// mean edge (sqrt(area / control vertices)) divided by this, so the surface follows the
   /// source between its vertices. 0: vertices only.
-  double samples_per_control_edge = 2.0;
+  double samples_per_control_edge = 1.0;
   /// Components with fewer welded vertices are left unfitted ("too small").
   int min_vertices = 8;
   /// Called with "mesh M component C: stage" as the fit progresses (may be empty).
