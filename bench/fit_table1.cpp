@@ -20,12 +20,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "dermis/asset/asset_pose.h"
 #include "dermis/dsurf/dsurf.h"
+#include "dermis/offline/build/control_mesh.h"
 #include "dermis/offline/build/domain_builder.h"
 #include "dermis/offline/character/character_fit.h"
 #include "dermis/offline/character/character_pose.h"
@@ -301,6 +303,21 @@ int RunBunny(const Settings& st) {
   std::printf("threads 1 and 2 give identical .dsurf bytes (%zu bytes): %s\n", bytes_default.size(),
               identical ? "yes" : "NO");
   PrintControlMesh("bunny", report);
+  // The control mesh build alone in CPU seconds (it runs on one thread, so this is its wall
+  // time on an idle core; the wall times above grow with the machine's load).
+  std::vector<double> cpu;
+  for (int r = 0; r < st.repeat; ++r) {
+    ControlMeshOptions cm;
+    cm.target_vertices = options.control_vertices;
+    cm.method = options.control_method;
+    PolygonMesh built;
+    const std::clock_t c0 = std::clock();
+    if (!BuildControlMesh(mesh, cm, &built).ok()) return 1;
+    cpu.push_back(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
+  }
+  std::sort(cpu.begin(), cpu.end());
+  std::printf("control mesh build alone: %.3f s CPU (median of %d; min %.3f, max %.3f)\n",
+              cpu[cpu.size() / 2], st.repeat, cpu.front(), cpu.back());
   return 0;
 }
 

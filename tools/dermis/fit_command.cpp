@@ -66,6 +66,10 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
     m["triangle_vertices"] = q.triangle_vertices;
     m["quads_paired"] = q.quads_paired;
     m["triangles_unpaired"] = q.triangles_unpaired;
+    if (q.grown_target > 0) {
+      m["grown_target"] = q.grown_target;
+      m["deviation_edge_lengths"] = q.deviation;
+    }
   }
   return m;
 }

@@ -277,7 +277,7 @@ Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uin
     if (rep.deviation <= options.max_deviation || growth >= options.max_growth_steps) break;
     goal = static_cast<int>(std::lround(goal * options.growth));
   }
-  rep.grown_target = goal;
+  if (options.max_deviation > 0.0) rep.grown_target = goal;
   {
     rep.triangle_vertices = static_cast<int>(mesh.positions.size());
     rep.quads_paired = pairing.quads;

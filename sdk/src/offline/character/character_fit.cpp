@@ -368,8 +368,9 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
       std::string note;
       if (fr.control_vertices > dense.num_vertices()) {
         const QuadRemeshReport& q = fr.control_mesh.quality;
-        char deviation[64];
+        char deviation[64], turn[64];
         std::snprintf(deviation, sizeof(deviation), "%.2g", q.deviation);
+        std::snprintf(turn, sizeof(turn), "%.3g", options.max_turn);
         note = "part " + std::to_string(ch.parts.size()) + " (" + stage + ") has " +
                std::to_string(fr.control_vertices) + " control vertices for " +
                std::to_string(dense.num_vertices()) + " vertices: " +
@@ -377,11 +378,10 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
                     ? "its thin parts need them (the remesh follows the part within " +
                           std::string(deviation) + " edge lengths only from " +
                           std::to_string(q.grown_target) + " vertices on)"
-                    : std::string("its remesh cannot be coarser: every edge of the remeshed "
-                                  "triangle mesh may turn the surface normal by at most " +
-                                  std::to_string(options.max_turn) +
-                                  " radians, and each of "
-                                  "its triangles becomes 3 or 4 quads"));
+                    : "its remesh cannot be coarser: every edge of the remeshed triangle "
+                      "mesh may turn the surface normal by at most " +
+                          std::string(turn) +
+                          " radians, and each of its triangles becomes 3 or 4 quads");
         if (!fr.control_mesh.fallback.empty()) {
           note = "part " + std::to_string(ch.parts.size()) + " (" + stage + ") has " +
                  std::to_string(fr.control_vertices) + " control vertices for " +
