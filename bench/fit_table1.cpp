@@ -14,7 +14,8 @@
 //                             [--control-vertices N] [--torus-vertices N]
 //                             [--control-method remesh|simplify]
 //                             [--density D] [--control-fit ITERATIONS] [--finest-passes P]
-//                             [--smoothing S] [--samples S] [--repeat R] [--detail]
+//                             [--smoothing S] [--samples S] [--max-turn T] [--repeat R]
+//                             [--detail]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -173,6 +174,7 @@ struct Settings {
   int finest_passes = -1;   // -1: FitOptions' default
   double smoothing = -1.0;  // -1: FitOptions' default
   double samples = -1.0;    // -1: CharacterFitOptions' default
+  double max_turn = -1.0;   // -1: CharacterFitOptions' default
   bool Row(const char* name) const { return rows.find(name) != std::string::npos; }
 };
 
@@ -451,6 +453,7 @@ int RunCharacters(const Settings& st) {
     CharacterFitOptions options;
     options.fit.control_method = st.method;
     if (st.samples >= 0.0) options.samples_per_control_edge = st.samples;
+    if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
     Character ch;
     CharacterFitReport report;
     if (s.ok()) s = FitCharacter(asset, options, &ch, &report);
@@ -528,6 +531,8 @@ int main(int argc, char** argv) {
       st.control_vertices = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--torus-vertices") == 0 && i + 1 < argc) {
       st.torus_vertices = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--max-turn") == 0 && i + 1 < argc) {
+      st.max_turn = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--samples") == 0 && i + 1 < argc) {
       st.samples = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--rows") == 0 && i + 1 < argc) {
