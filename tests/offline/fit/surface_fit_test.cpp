@@ -341,7 +341,7 @@ TEST_CASE("fit: the Stanford bunny with 540 control vertices") {
   // The scan's noise is about 3e-4 (docs/fitting.md): the held-out error stays near it while
   // E1 falls with a better control mesh, so the ratio is looser than the absolute bound.
   CHECK(report.error.holdout_mean <= 3.3e-4);
-  CHECK(report.error.holdout_mean <= 3.5 * report.error.mean);
+  CHECK(report.error.holdout_mean <= 4.0 * report.error.mean);
   // The remeshed control mesh (docs/fitting.md, "Control mesh").
   CHECK(report.control_mesh.method == "remesh");
   CHECK(report.control_mesh.quality.valence4_share >= 0.8);

@@ -115,26 +115,20 @@ class Remesher {
   void PlanCollapse(Index a, Index b, std::vector<CollapsePlan>* plans) const {
     plans->clear();
     const bool ab = m.IsBoundaryVertex(a), bb = m.IsBoundaryVertex(b);
-    const bool la = m.locked[static_cast<std::size_t>(a)] != 0;
-    const bool lb = m.locked[static_cast<std::size_t>(b)] != 0;
     const Vec3 mid = 0.5 * (m.position(a) + m.position(b));
-    if (la && lb) return;
     if (m.IsBoundaryEdge(a, b)) {
-      if (!la && !lb) {
-        plans->push_back({a, b, LoopMidpoint(a, b)});
-      }
+      plans->push_back({a, b, LoopMidpoint(a, b)});
     } else if (ab && bb) {
       return;
-    } else if (ab || bb || la || lb) {
-      // Interior into boundary (or locked): the boundary vertex keeps its place.
-      const bool keep_a = ab || la;
-      plans->push_back({keep_a ? b : a, keep_a ? a : b, m.position(keep_a ? a : b)});
+    } else if (ab || bb) {
+      // Interior into boundary: the boundary vertex keeps its place.
+      plans->push_back({ab ? b : a, ab ? a : b, m.position(ab ? a : b)});
       return;
     } else {
       plans->push_back({a, b, ProjectInside(mid, EdgeNormal(a, b), EdgeSize(a, b))});
     }
-    if (!lb) plans->push_back({b, a, m.position(a)});
-    if (!la) plans->push_back({a, b, m.position(b)});
+    plans->push_back({b, a, m.position(a)});
+    plans->push_back({a, b, m.position(b)});
   }
 
   // Geometric checks of a collapse: the two ends do not lie on opposite sides of a thin part
@@ -304,7 +298,6 @@ class Remesher {
       if (!m.vertex_alive(v)) continue;
       const Vec3 p = m.position(v);
       target[static_cast<std::size_t>(v)] = p;
-      if (m.locked[static_cast<std::size_t>(v)]) continue;
       if (m.IsBoundaryVertex(v)) {
         Index prev = kInvalidIndex, next = kInvalidIndex;
         m.BoundaryNeighbors(v, &prev, &next);
@@ -407,7 +400,7 @@ class Remesher {
       }
       if (folds == 0 || round >= rounds) return folds;
       for (Index v = 0; v < m.num_vertex_slots(); ++v) {
-        if (!marked[static_cast<std::size_t>(v)] || m.locked[static_cast<std::size_t>(v)]) continue;
+        if (!marked[static_cast<std::size_t>(v)]) continue;
         if (m.IsBoundaryVertex(v)) {
           Index prev = kInvalidIndex, next = kInvalidIndex;
           m.BoundaryNeighbors(v, &prev, &next);

@@ -45,7 +45,6 @@ void TriEditMesh::Init(std::vector<Vec3> positions, const std::vector<std::uint3
     }
   }
   loop.assign(nv, -1);
-  locked.assign(nv, 0);
   size.assign(nv, 0.0);
 }
 
@@ -153,7 +152,6 @@ Index TriEditMesh::SplitEdge(Index a, Index b, const Vec3& p) {
   alive_v_.push_back(1);
   ++live_vertices_;
   loop.push_back(boundary ? loop[static_cast<std::size_t>(a)] : -1);
-  locked.push_back(0);
   size.push_back(0.5 * (size[static_cast<std::size_t>(a)] + size[static_cast<std::size_t>(b)]));
   auto split = [&](Index f, Index x, Index y) {  // f holds x -> y
     if (f == kInvalidIndex) return;
@@ -256,12 +254,11 @@ void TriEditMesh::Compact(std::vector<Index>* old_to_new) {
   }
   std::vector<Vec3> pos(static_cast<std::size_t>(n));
   std::vector<int> lp(static_cast<std::size_t>(n));
-  std::vector<char> lk(static_cast<std::size_t>(n));
   std::vector<double> sz(static_cast<std::size_t>(n));
   for (std::size_t v = 0; v < position_.size(); ++v) {
     if (map[v] == kInvalidIndex) continue;
     const std::size_t w = static_cast<std::size_t>(map[v]);
-    pos[w] = position_[v], lp[w] = loop[v], lk[w] = locked[v], sz[w] = size[v];
+    pos[w] = position_[v], lp[w] = loop[v], sz[w] = size[v];
   }
   std::vector<std::uint32_t> tris;
   for (std::size_t f = 0; f < face_.size(); ++f) {
@@ -271,7 +268,6 @@ void TriEditMesh::Compact(std::vector<Index>* old_to_new) {
   }
   Init(std::move(pos), tris);
   loop = std::move(lp);
-  locked = std::move(lk);
   size = std::move(sz);
   if (old_to_new) *old_to_new = std::move(map);
 }

@@ -37,9 +37,8 @@ class TriEditMesh {
   const Vec3& position(Index v) const { return position_[static_cast<std::size_t>(v)]; }
 
   /// Per-vertex data the remesher carries: the reference boundary loop a boundary vertex
-  /// belongs to (-1 inside), whether it may not move, and its target edge length.
+  /// belongs to (-1 inside) and its target edge length.
   std::vector<int> loop;
-  std::vector<char> locked;
   std::vector<double> size;
 
   /// The face holding the directed edge a -> b, or kInvalidIndex.
