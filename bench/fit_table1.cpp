@@ -1,25 +1,44 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
-// Paper Table 1 (bunny row) side by side with ours: fits ../shared/data/scans/stanford-bunny.obj
-// with 540 control vertices, reports the fit's own errors and timings, checks them
-// independently against the level-16 tessellation (point-to-triangle distances), and checks
-// that --threads 1 and 2 give the same .dsurf bytes.
-// Usage (from the repo root): bench_fit [OBJ|PLY] [--control-vertices N] [--density D]
-//                             [--control-fit ITERATIONS] [--finest-passes P] [--smoothing S]
-//                             [--repeat R] [--detail]
+// The fitting benchmark (docs/results.md, docs/fitting.md, docs/characters.md), three rows:
+//  - bunny: paper Table 1 side by side with ours: fits ../shared/data/scans/stanford-bunny.obj
+//    with 540 control vertices, reports the fit's own errors and timings and the control mesh's
+//    quality, checks them independently against the level-16 tessellation (point-to-triangle
+//    distances), and checks that --threads 1 and 2 give the same .dsurf bytes;
+//  - torus: the built-in torus tessellated at level 12 (6,912 points) fitted with 200 control
+//    vertices; the domain surface (no displacement) and the full surface against the input,
+//    both directions;
+//  - characters: RiggedSimple, RiggedFigure, Fox and CesiumMan fitted as `dermis fit` does,
+//    posed at rest in `lod` mode at level 8 (as `dermis animate --clip rest --mode lod --level
+//    8`) and compared with the source posed at rest, two-sided Hausdorff in % of the diagonal.
+// Usage (from the repo root): bench_fit [OBJ|PLY] [--rows bunny,torus,characters]
+//                             [--control-vertices N] [--torus-vertices N]
+//                             [--control-method remesh|simplify]
+//                             [--density D] [--control-fit ITERATIONS] [--finest-passes P]
+//                             [--smoothing S] [--samples S] [--max-turn T] [--repeat R]
+//                             [--detail]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "dermis/asset/asset_pose.h"
 #include "dermis/dsurf/dsurf.h"
+#include "dermis/offline/build/control_mesh.h"
+#include "dermis/offline/build/domain_builder.h"
+#include "dermis/offline/character/character_fit.h"
+#include "dermis/offline/character/character_pose.h"
+#include "dermis/offline/character/skin_transfer.h"
 #include "dermis/offline/fit/surface_fit.h"
 #include "dermis/offline/fit/surface_projection.h"
+#include "dermis/offline/geometry/builtin_meshes.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/offline/io/point_input.h"
+#include "dermis/plugins/gltf.h"
 #include "dermis/surface/chart.h"
 #include "dermis/surface/surface_evaluator.h"
 #include "dermis/surface/tessellation.h"
@@ -143,38 +162,57 @@ void PrintDetail(const FittedSurface& fitted, const PolygonMesh& mesh,
   PrintQuantiles(sd, "surface -> data (level 8)");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::string path = "../shared/data/scans/stanford-bunny.obj";
-  int control_vertices = 540, repeat = 3;
+// Settings shared by the rows.
+struct Settings {
+  std::string bunny = "../shared/data/scans/stanford-bunny.obj";
+  std::string rows = "bunny,torus,characters";
+  int control_vertices = 540, torus_vertices = 200, repeat = 3;
   bool detail = false;
+  ControlMeshMethod method = ControlMeshMethod::kRemesh;
   double density = -1.0;    // -1: FitOptions' default
   int control_fit = -1;     // -1: FitOptions' default
   int finest_passes = -1;   // -1: FitOptions' default
   double smoothing = -1.0;  // -1: FitOptions' default
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--control-vertices") == 0 && i + 1 < argc) {
-      control_vertices = std::atoi(argv[++i]);
-    } else if (std::strcmp(argv[i], "--density") == 0 && i + 1 < argc) {
-      density = std::atof(argv[++i]);
-    } else if (std::strcmp(argv[i], "--control-fit") == 0 && i + 1 < argc) {
-      control_fit = std::atoi(argv[++i]);
-    } else if (std::strcmp(argv[i], "--finest-passes") == 0 && i + 1 < argc) {
-      finest_passes = std::atoi(argv[++i]);
-    } else if (std::strcmp(argv[i], "--smoothing") == 0 && i + 1 < argc) {
-      smoothing = std::atof(argv[++i]);
-    } else if (std::strcmp(argv[i], "--detail") == 0) {
-      detail = true;
-    } else if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
-      repeat = std::max(1, std::atoi(argv[++i]));
-    } else {
-      path = argv[i];
-    }
+  double samples = -1.0;    // -1: CharacterFitOptions' default
+  double max_turn = -1.0;   // -1: CharacterFitOptions' default
+  bool Row(const char* name) const { return rows.find(name) != std::string::npos; }
+};
+
+void ApplySettings(const Settings& st, FitOptions* options) {
+  options->control_method = st.method;
+  if (st.density >= 0.0) options->displacement.density = st.density;
+  if (st.control_fit >= 0) options->control_fit_iterations = st.control_fit;
+  if (st.finest_passes >= 1) options->displacement.finest_passes = st.finest_passes;
+  if (st.smoothing >= 0.0) options->displacement.smoothing = st.smoothing;
+}
+
+void PrintControlMesh(const char* name, const FitReport& r) {
+  const ControlMeshInfo& c = r.control_mesh;
+  const QuadRemeshReport& q = c.quality;
+  std::printf(
+      "control mesh (%s): method %s%s%s, %d vertices for a target of %d (%+.1f%%), %d quads; "
+      "interior valence 4: %.1f%% (%d of %d), max valence %d; corner angles %.1f..%.1f deg, "
+      "%.1f%% within 60..120; %d components, %d boundary loops; %.3f s incl. control-vertex fit\n",
+      name, c.method.c_str(), c.fallback.empty() ? "" : " (fallback: ",
+      c.fallback.empty() ? "" : (c.fallback + ")").c_str(), q.vertices, q.target_vertices,
+      100.0 * (q.vertices - q.target_vertices) / std::max(q.target_vertices, 1), q.faces,
+      100.0 * q.valence4_share, q.interior_valence4, q.interior_vertices, q.max_valence,
+      q.min_corner_angle_deg, q.max_corner_angle_deg, 100.0 * q.corners_60_120_share, q.components,
+      q.boundary_loops, r.seconds.control_mesh);
+  if (c.method == "remesh") {
+    std::printf(
+        "control mesh (%s): seed %d vertices -> isotropic %d vertices -> %d quads + %d "
+        "triangles -> split\n",
+        name, q.seed_vertices, q.triangle_vertices, q.quads_paired, q.triangles_unpaired);
   }
+}
+
+int RunBunny(const Settings& st) {
+  const std::string& path = st.bunny;
   if (!std::filesystem::exists(path)) {
-    std::printf("bench_fit: skipped: %s not found (run from the repo root with ../shared/data)\n",
-                path.c_str());
+    std::printf(
+        "bench_fit: bunny skipped: %s not found (run from the repo root with ../shared/data)\n",
+        path.c_str());
     return 0;
   }
   PolygonMesh mesh;
@@ -189,24 +227,23 @@ int main(int argc, char** argv) {
   input.mesh = &mesh;
   input.points_dropped = dropped;
   FitOptions options;
-  options.control_vertices = control_vertices;
-  if (density >= 0.0) options.displacement.density = density;
-  if (control_fit >= 0) options.control_fit_iterations = control_fit;
-  if (finest_passes >= 1) options.displacement.finest_passes = finest_passes;
-  if (smoothing >= 0.0) options.displacement.smoothing = smoothing;
-  std::vector<double> totals;
+  options.control_vertices = st.control_vertices;
+  ApplySettings(st, &options);
+  std::vector<double> totals, control;
   FitReport report;
   FittedSurface fitted;
   std::string bytes_default;
-  for (int r = 0; r < repeat; ++r) {
+  for (int r = 0; r < st.repeat; ++r) {
     s = FitSurface(input, options, &fitted, &report);
     if (!s.ok()) {
       std::fprintf(stderr, "bench_fit: %s\n", s.message().c_str());
       return 1;
     }
     totals.push_back(report.seconds.total);
+    control.push_back(report.seconds.control_mesh);
   }
   std::sort(totals.begin(), totals.end());
+  std::sort(control.begin(), control.end());
   bytes_default = SerializeDsurf(*fitted.surface.domain, fitted.surface.control.positions.data(),
                                  fitted.displacement.get());
   // Independent check: fitted (not held-out) points against the level-16 tessellation.
@@ -218,7 +255,7 @@ int main(int argc, char** argv) {
   double sum = 0.0, mx = 0.0;
   for (double d : tess) sum += d, mx = std::max(mx, d);
   const std::size_t n = tess.size();
-  if (detail) PrintDetail(fitted, mesh, fit_points, tess, report.scale);
+  if (st.detail) PrintDetail(fitted, mesh, fit_points, tess, report.scale);
   // Determinism across thread counts.
   bool identical = true;
   for (int threads : {1, 2}) {
@@ -232,7 +269,7 @@ int main(int argc, char** argv) {
   }
   const FitErrors& e = report.error;
   std::printf("Yoon 2006 Table 1, bunny row, vs dermis (%s, %d threads, median of %d runs)\n",
-              path.c_str(), report.threads, repeat);
+              path.c_str(), report.threads, st.repeat);
   std::printf("| | paper | dermis |\n|---|---|---|\n");
   std::printf("| data points | 34,834 | %lld (%lld fitted, %lld held out, %lld outside) |\n",
               static_cast<long long>(report.points), static_cast<long long>(report.points_fitted),
@@ -241,7 +278,8 @@ int main(int argc, char** argv) {
   std::printf("| control vertices | 540 | %lld (%lld quads) |\n",
               static_cast<long long>(report.control_vertices),
               static_cast<long long>(report.control_faces));
-  std::printf("| control mesh (s) | (commercial tool) | %.3f |\n", report.seconds.control_mesh);
+  std::printf("| control mesh (s) | (commercial tool) | %.3f (min %.3f, max %.3f) |\n",
+              control[control.size() / 2], control.front(), control.back());
   std::printf("| projection and optimisation (s) | 221.07 | %.3f |\n",
               report.seconds.projection_optimization);
   std::printf("| displacement functions (s) | 1.43 | %.3f |\n", report.seconds.displacement);
@@ -266,5 +304,261 @@ int main(int argc, char** argv) {
       sum / static_cast<double>(n) <= e.mean ? "within" : "ABOVE", mx);
   std::printf("threads 1 and 2 give identical .dsurf bytes (%zu bytes): %s\n", bytes_default.size(),
               identical ? "yes" : "NO");
+  PrintControlMesh("bunny", report);
+  // The control mesh build alone in CPU seconds (it runs on one thread, so this is its wall
+  // time on an idle core; the wall times above grow with the machine's load).
+  std::vector<double> cpu;
+  for (int r = 0; r < st.repeat; ++r) {
+    ControlMeshOptions cm;
+    cm.target_vertices = options.control_vertices;
+    cm.method = options.control_method;
+    PolygonMesh built;
+    const std::clock_t c0 = std::clock();
+    if (!BuildControlMesh(mesh, cm, &built).ok()) return 1;
+    cpu.push_back(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
+  }
+  std::sort(cpu.begin(), cpu.end());
+  std::printf("control mesh build alone: %.3f s CPU (median of %d; min %.3f, max %.3f)\n",
+              cpu[cpu.size() / 2], st.repeat, cpu.front(), cpu.back());
   return 0;
+}
+
+// Mean and largest distance from each point to a triangle mesh.
+void MeanMax(const std::vector<Vec3>& points, const TriangleDistanceTree& tree, double scale,
+             double* mean, double* max) {
+  double sum = 0.0, mx = 0.0;
+  for (const Vec3& p : points) {
+    const double d = tree.Query(p).distance / scale;
+    sum += d, mx = std::max(mx, d);
+  }
+  *mean = sum / static_cast<double>(std::max<std::size_t>(points.size(), 1));
+  *max = mx;
+}
+
+int RunTorus(const Settings& st) {
+  // The input: the built-in torus's manifold surface tessellated at level 12 (as `dermis
+  // tessellate --builtin torus --level 12`).
+  PolygonMesh control;
+  Status s = MakeBuiltinMesh("torus", &control);
+  ControlSurface cs;
+  if (s.ok()) s = BuildControlSurface(control, DomainOptions(), &cs);
+  TessellationPattern pattern;
+  if (s.ok()) s = TessellationPattern::Build(cs.domain->topology(), 12, &pattern);
+  if (!s.ok()) {
+    std::fprintf(stderr, "bench_fit: torus: %s\n", s.message().c_str());
+    return 1;
+  }
+  PolygonMesh mesh;
+  mesh.source_name = "torus (level 12)";
+  mesh.positions.resize(pattern.samples.size());
+  EvaluateSamples(*cs.domain, cs.patches.data(), nullptr, pattern.samples.data(),
+                  pattern.samples.size(), mesh.positions.data(), nullptr);
+  for (std::size_t t = 0; t < pattern.triangles.size(); t += 3) {
+    mesh.AddFace({static_cast<Index>(pattern.triangles[t]),
+                  static_cast<Index>(pattern.triangles[t + 1]),
+                  static_cast<Index>(pattern.triangles[t + 2])});
+  }
+  FitInput input;
+  input.points = mesh.positions;
+  input.mesh = &mesh;
+  FitOptions options;
+  options.control_vertices = st.torus_vertices;
+  ApplySettings(st, &options);
+  FittedSurface fitted;
+  FitReport report;
+  s = FitSurface(input, options, &fitted, &report);
+  if (!s.ok()) {
+    std::fprintf(stderr, "bench_fit: torus: %s\n", s.message().c_str());
+    return 1;
+  }
+  TriangleDistanceTree data_tree;
+  data_tree.Build(mesh.positions, TriangulateFan(mesh));
+  const int level = 24;
+  TessellationPattern fine;
+  TessellationPattern::Build(fitted.surface.domain->topology(), level, &fine);
+  std::printf(
+      "torus: %zu points, %lld control vertices (%lld quads), unit: largest side 1 (%.4g model "
+      "units); surface tessellated at level %d\n",
+      mesh.positions.size(), static_cast<long long>(report.control_vertices),
+      static_cast<long long>(report.control_faces), report.scale, level);
+  std::printf("| torus | data -> surface mean / max | surface -> data mean / max | max |\n");
+  std::printf("|---|---|---|---|\n");
+  for (int full = 0; full < 2; ++full) {
+    std::unique_ptr<TruncatedDisplacement> none;
+    if (!full) none = std::make_unique<TruncatedDisplacement>(fitted.displacement.get(), 0);
+    const Displacement* disp =
+        full ? static_cast<const Displacement*>(fitted.displacement.get()) : none.get();
+    std::vector<Vec3> x(fine.samples.size());
+    EvaluateSamples(*fitted.surface.domain, fitted.surface.patches.data(), disp,
+                    fine.samples.data(), x.size(), x.data(), nullptr);
+    TriangleDistanceTree surface_tree;
+    surface_tree.Build(x, fine.triangles);
+    double m1 = 0, x1 = 0, m2 = 0, x2 = 0;
+    MeanMax(mesh.positions, surface_tree, report.scale, &m1, &x1);
+    MeanMax(x, data_tree, report.scale, &m2, &x2);
+    std::printf("| %s | %.3g / %.3g | %.3g / %.3g | %.3g |\n",
+                full ? "full surface" : "domain surface (0 displacement levels)", m1, x1, m2, x2,
+                std::max(x1, x2));
+  }
+  PrintControlMesh("torus", report);
+  return 0;
+}
+
+struct Triangles {
+  std::vector<Vec3> positions;
+  std::vector<std::uint32_t> indices;
+  void Append(const std::vector<Vec3>& x, const std::vector<std::uint32_t>& tris) {
+    const std::uint32_t base = static_cast<std::uint32_t>(positions.size());
+    positions.insert(positions.end(), x.begin(), x.end());
+    for (std::uint32_t i : tris) indices.push_back(base + i);
+  }
+};
+
+// Points on the triangles: the vertices and a barycentric grid of spacing about `h` inside.
+std::vector<Vec3> SampleTriangles(const Triangles& m, double h) {
+  std::vector<Vec3> out = m.positions;
+  for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+    const Vec3 &a = m.positions[m.indices[t]], &b = m.positions[m.indices[t + 1]],
+               &c = m.positions[m.indices[t + 2]];
+    const double longest =
+        std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
+    const int k = std::min(32, static_cast<int>(std::ceil(longest / h)));
+    for (int i = 0; i <= k; ++i) {
+      for (int j = 0; i + j <= k; ++j) {
+        const double u = double(i) / k, v = double(j) / k;
+        out.push_back((1.0 - u - v) * a + u * b + v * c);
+      }
+    }
+  }
+  return out;
+}
+
+int RunCharacters(const Settings& st) {
+  const char* names[] = {"RiggedSimple", "RiggedFigure", "Fox", "CesiumMan"};
+  std::printf(
+      "characters: `dermis fit` defaults, lod level 8 at rest against the source at rest, "
+      "two-sided Hausdorff in %% of the source's bounding-box diagonal\n");
+  std::printf(
+      "| asset | source vertices (welded, fitted parts) | control vertices | Hausdorff %% | lod -> "
+      "source max %% | source -> lod max %% | E1 max (model) | coefficients | fit (s) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+  for (const char* name : names) {
+    const std::string path = std::string("../shared/data/gltf/") + name + ".glb";
+    if (!std::filesystem::exists(path)) {
+      std::printf("| %s | skipped: %s not found | | | | | | | |\n", name, path.c_str());
+      continue;
+    }
+    Asset asset;
+    Status s = ImportGltf(path, &asset);
+    CharacterFitOptions options;
+    options.fit.control_method = st.method;
+    if (st.samples >= 0.0) options.samples_per_control_edge = st.samples;
+    if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
+    Character ch;
+    CharacterFitReport report;
+    if (s.ok()) s = FitCharacter(asset, options, &ch, &report);
+    CharacterPoseOptions po;
+    po.mode = CharacterPoseMode::kLod;
+    po.level = 8;
+    CharacterPoser poser;
+    std::vector<PosedPrimitive> posed;
+    if (s.ok()) s = CharacterPoser::Build(ch, po, &poser);
+    if (s.ok()) s = poser.PoseClip(-1, 0.0, kDefaultPoseStepsPerSecond, &posed);
+    if (!s.ok()) {
+      std::fprintf(stderr, "bench_fit: %s: %s\n", name, s.message().c_str());
+      return 1;
+    }
+    Triangles lod, source;
+    for (std::size_t i = 0; i < posed.size(); ++i) {
+      const DrawnPrimitive& d = poser.drawn()[i];
+      const AssetPrimitive& prim = poser.asset()
+                                       .meshes[static_cast<std::size_t>(d.mesh)]
+                                       .primitives[static_cast<std::size_t>(d.primitive)];
+      lod.Append(posed[i].positions, PrimitiveTriangles(prim));
+    }
+    AssetPose pose;
+    RestPose(asset, &pose);
+    std::vector<glm::dmat4> world;
+    ComputeWorldMatrices(asset, pose, &world);
+    for (std::size_t nd = 0; nd < asset.nodes.size(); ++nd) {
+      const Index m = asset.nodes[nd].mesh;
+      if (m == kInvalidIndex) continue;
+      for (const AssetPrimitive& prim : asset.meshes[static_cast<std::size_t>(m)].primitives) {
+        std::vector<glm::dvec3> x, nrm;
+        PosePrimitive(asset, pose, world, static_cast<Index>(nd), prim, &x, &nrm);
+        source.Append(x, PrimitiveTriangles(prim));
+      }
+    }
+    Vec3 lo(source.positions[0]), hi(lo);
+    for (const Vec3& p : source.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const double diagonal = glm::length(hi - lo);
+    TriangleDistanceTree source_tree, lod_tree;
+    source_tree.Build(source.positions, source.indices);
+    lod_tree.Build(lod.positions, lod.indices);
+    double m1 = 0, x1 = 0, m2 = 0, x2 = 0;
+    MeanMax(SampleTriangles(lod, diagonal / 400.0), source_tree, diagonal / 100.0, &m1, &x1);
+    MeanMax(SampleTriangles(source, diagonal / 400.0), lod_tree, diagonal / 100.0, &m2, &x2);
+    std::int64_t points = 0, control_vertices = 0, coefficients = 0;
+    for (const CharacterPart& part : ch.parts) {
+      points += part.fit.points;
+      control_vertices += static_cast<std::int64_t>(part.surface.rest_positions.size());
+      coefficients += part.fit.coefficients;
+    }
+    std::printf("| %s | %lld | %lld | %.2f | %.2f | %.2f | %.3g | %lld | %.2f |\n", name,
+                static_cast<long long>(points), static_cast<long long>(control_vertices),
+                std::max(x1, x2), x1, x2, report.e1_max, static_cast<long long>(coefficients),
+                report.seconds);
+    for (std::size_t p = 0; p < report.part_control_meshes.size(); ++p) {
+      const ControlMeshInfo& c = report.part_control_meshes[p];
+      std::printf(
+          "  %s part %zu: %s, %d control vertices (target %d), valence 4 %.1f%%, corners "
+          "%.1f..%.1f deg%s%s\n",
+          name, p, c.method.c_str(), c.quality.vertices, c.quality.target_vertices,
+          100.0 * c.quality.valence4_share, c.quality.min_corner_angle_deg,
+          c.quality.max_corner_angle_deg,
+          c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str());
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Settings st;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--control-vertices") == 0 && i + 1 < argc) {
+      st.control_vertices = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--torus-vertices") == 0 && i + 1 < argc) {
+      st.torus_vertices = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--max-turn") == 0 && i + 1 < argc) {
+      st.max_turn = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--samples") == 0 && i + 1 < argc) {
+      st.samples = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--rows") == 0 && i + 1 < argc) {
+      st.rows = argv[++i];
+    } else if (std::strcmp(argv[i], "--control-method") == 0 && i + 1 < argc) {
+      st.method = std::strcmp(argv[++i], "simplify") == 0 ? ControlMeshMethod::kSimplify
+                                                          : ControlMeshMethod::kRemesh;
+    } else if (std::strcmp(argv[i], "--density") == 0 && i + 1 < argc) {
+      st.density = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--control-fit") == 0 && i + 1 < argc) {
+      st.control_fit = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--finest-passes") == 0 && i + 1 < argc) {
+      st.finest_passes = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--smoothing") == 0 && i + 1 < argc) {
+      st.smoothing = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--detail") == 0) {
+      st.detail = true;
+    } else if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
+      st.repeat = std::max(1, std::atoi(argv[++i]));
+    } else {
+      st.bunny = argv[i];
+    }
+  }
+  int rc = 0;
+  if (st.Row("bunny")) rc |= RunBunny(st);
+  if (st.Row("torus")) rc |= RunTorus(st);
+  if (st.Row("characters")) rc |= RunCharacters(st);
+  return rc;
 }

@@ -43,6 +43,37 @@ struct FitArgs {
   bool refit = false;
 };
 
+nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
+  const QuadRemeshReport& q = c.quality;
+  nlohmann::ordered_json m;
+  m["method"] = c.method;
+  m["fallback"] =
+      c.fallback.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(c.fallback);
+  m["target_vertices"] =
+      c.method == "given" ? nlohmann::ordered_json() : nlohmann::ordered_json(q.target_vertices);
+  m["vertices"] = q.vertices;
+  m["faces"] = q.faces;
+  m["interior_vertices"] = q.interior_vertices;
+  m["interior_valence4_share"] = q.valence4_share;
+  m["max_valence"] = q.max_valence;
+  m["min_corner_angle_deg"] = q.min_corner_angle_deg;
+  m["max_corner_angle_deg"] = q.max_corner_angle_deg;
+  m["corners_60_120_share"] = q.corners_60_120_share;
+  m["components"] = q.components;
+  m["boundary_loops"] = q.boundary_loops;
+  if (c.method == "remesh") {
+    m["seed_vertices"] = q.seed_vertices;
+    m["triangle_vertices"] = q.triangle_vertices;
+    m["quads_paired"] = q.quads_paired;
+    m["triangles_unpaired"] = q.triangles_unpaired;
+    if (q.grown_target > 0) {
+      m["grown_target"] = q.grown_target;
+      m["deviation_edge_lengths"] = q.deviation;
+    }
+  }
+  return m;
+}
+
 nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   nlohmann::ordered_json j;
   j["schema"] = "dermis.fit/1";
@@ -57,6 +88,7 @@ nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   j["control_vertices"] = r.control_vertices;
   j["control_faces"] = r.control_faces;
   j["control_fit_rounds"] = r.control_fit_rounds;
+  j["control_mesh"] = ControlMeshJson(r.control_mesh);
   j["coefficients"] = r.coefficients;
   j["finest_coefficients"] = r.finest_coefficients;
   j["levels"] = r.max_levels;
@@ -107,6 +139,15 @@ Json CharacterReportJson(const FitArgs& a, const Character& ch, const CharacterF
   const Json c = DescribeCharacter(ch);
   j["parts"] = c["parts"];
   j["unfitted"] = c["unfitted"];
+  // How each part's control mesh was made, in part order.
+  Json meshes = Json::array();
+  for (std::size_t p = 0; p < r.part_control_meshes.size(); ++p) {
+    nlohmann::ordered_json m = ControlMeshJson(r.part_control_meshes[p]);
+    const std::string note = p < r.part_notes.size() ? r.part_notes[p] : std::string();
+    m["note"] = note.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(note);
+    meshes.push_back(m);
+  }
+  j["control_meshes"] = meshes;
   j["seconds"] = r.seconds;
   return j;
 }
@@ -170,6 +211,14 @@ int RunFitCharacter(const FitArgs& a) {
       std::fprintf(stderr, "  not fitted: mesh %d component %d (%lld vertices): %s\n", u.mesh,
                    u.component, static_cast<long long>(u.vertices), u.reason.c_str());
     }
+    for (const std::string& note : report.part_notes) {
+      if (!note.empty()) std::fprintf(stderr, "  note: %s\n", note.c_str());
+    }
+    for (const ControlMeshInfo& c : report.part_control_meshes) {
+      if (!c.fallback.empty()) {
+        std::fprintf(stderr, "  note: control mesh by simplification: %s\n", c.fallback.c_str());
+      }
+    }
     std::fprintf(stderr, "wrote %s\n", a.output.c_str());
   }
   return kExitOk;
@@ -220,6 +269,10 @@ int RunFit(const FitArgs& a) {
     MakeParentFolder(a.report);
     s = WriteFileAtomically(a.report, ReportJson(a, report).dump(2) + "\n");
     if (!s.ok()) return Fail(kCommand, s);
+  }
+  if (!a.quiet && !report.control_mesh.fallback.empty()) {
+    std::fprintf(stderr, "dermis fit: note: control mesh by simplification: %s\n",
+                 report.control_mesh.fallback.c_str());
   }
   if (!a.quiet) {
     std::fprintf(stderr,

@@ -193,13 +193,15 @@ TEST_CASE("fit: a bumpy sphere over a cube control mesh is recovered") {
 
 TEST_CASE("fit: a control-mesh target equal to the full split keeps every triangle") {
   // A closed octahedron of 8 triangles: the full split has V + E + F = 6 + 12 + 8 = 26 quad
-  // vertices. Asking for exactly that (or more, which is refused) must not simplify at all.
+  // vertices. Asking for exactly that (or more, which is refused) must not simplify at all
+  // (the simplification method; the remesh below).
   PolygonMesh mesh;
   mesh.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   const int faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                            {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   for (const auto& f : faces) mesh.AddFace({f[0], f[1], f[2]});
   ControlMeshOptions options;
+  options.method = ControlMeshMethod::kSimplify;
   options.target_vertices = 26;
   PolygonMesh control;
   const Status s = BuildControlMesh(mesh, options, &control);
@@ -215,6 +217,18 @@ TEST_CASE("fit: a control-mesh target equal to the full split keeps every triang
   options.target_vertices = 1000;
   REQUIRE(BuildControlMesh(mesh, options, &control).ok());
   CHECK(control.num_vertices() == 26);
+  // The remesh of so small a mesh: a valid all-quad mesh near the clamped target, with every
+  // vertex on the octahedron.
+  options.method = ControlMeshMethod::kRemesh;
+  ControlMeshInfo info;
+  REQUIRE(BuildControlMesh(mesh, options, &control, &info).ok());
+  CHECK(info.method == "remesh");
+  CHECK(ValidatePolygonMesh(control).ok());
+  CHECK(std::abs(control.num_vertices() - 26) <= 6);
+  CHECK(control.face_vertices.size() == 4u * static_cast<std::size_t>(control.num_faces()));
+  for (const Vec3& p : control.positions) {
+    CHECK(std::abs(p.x) + std::abs(p.y) + std::abs(p.z) == Approx(1.0));
+  }
 }
 
 TEST_CASE("fit: .dsurf round trip is bit-exact and threads do not change the bytes") {
@@ -324,14 +338,23 @@ TEST_CASE("fit: the Stanford bunny with 540 control vertices") {
   INFO("E1 " << report.error.mean << " held out " << report.error.holdout_mean);
   CHECK(std::abs(report.control_vertices - 540) <= 10);
   CHECK(report.error.mean <= 1.5e-4);
-  CHECK(report.error.holdout_mean <= 3.0 * report.error.mean);
+  // The scan's noise is about 3e-4 (docs/fitting.md): the held-out error stays near it while
+  // E1 falls with a better control mesh, so the ratio is looser than the absolute bound.
+  CHECK(report.error.holdout_mean <= 3.3e-4);
+  CHECK(report.error.holdout_mean <= 4.0 * report.error.mean);
+  // The remeshed control mesh (docs/fitting.md, "Control mesh").
+  CHECK(report.control_mesh.method == "remesh");
+  CHECK(report.control_mesh.quality.valence4_share >= 0.8);
+  CHECK(report.control_mesh.quality.boundary_loops == 5);
+  CHECK(report.control_mesh.quality.components == 1);
   CHECK(report.error.unoptimized_mean > 5.0 * report.error.mean);
   CHECK(report.points_outside < 100);
   CHECK(report.control_fit_rounds == 2);
-  // Independently: the fitted points against the level-16 tessellation (exact
-  // point-to-triangle distances) are within the reported E1 on average.
+  // Independently: the fitted points against the level-32 tessellation (exact
+  // point-to-triangle distances) are within the reported E1 on average. (Level 16 adds about
+  // 2e-5 of chord error, a fifth of E1 now; bench_fit prints both.)
   TessellationPattern pattern;
-  REQUIRE(TessellationPattern::Build(fitted.surface.domain->topology(), 16, &pattern).ok());
+  REQUIRE(TessellationPattern::Build(fitted.surface.domain->topology(), 32, &pattern).ok());
   std::vector<Vec3> x(pattern.samples.size());
   REQUIRE(EvaluateSamples(*fitted.surface.domain, fitted.surface.patches.data(),
                           fitted.displacement.get(), pattern.samples.data(), x.size(), x.data(),
@@ -344,6 +367,6 @@ TEST_CASE("fit: the Stanford bunny with 540 control vertices") {
     if (IsHeldOut(i, options.holdout, options.holdout_seed)) continue;
     sum += tree.Query(input.points[i]).distance / report.scale, ++n;
   }
-  INFO("level-16 tessellation: mean " << sum / static_cast<double>(n));
+  INFO("level-32 tessellation: mean " << sum / static_cast<double>(n));
   CHECK(sum / static_cast<double>(n) <= report.error.mean);
 }

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "dermis/offline/build/quad_pairing.h"
 #include "dermis/offline/geometry/quadrangulate.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 
@@ -24,15 +25,22 @@ using Edge = std::pair<std::uint32_t, std::uint32_t>;
 
 // Vertex count of the quad mesh that one split of a triangle mesh gives: V + E + F.
 int SplitVertexCount(const std::vector<std::uint32_t>& tris) {
-  std::set<std::uint32_t> used(tris.begin(), tris.end());
-  std::set<Edge> edges;
+  std::vector<std::uint32_t> used(tris);
+  std::sort(used.begin(), used.end());
+  const std::size_t vertices =
+      static_cast<std::size_t>(std::unique(used.begin(), used.end()) - used.begin());
+  std::vector<Edge> edges;
+  edges.reserve(tris.size());
   for (std::size_t t = 0; t < tris.size(); t += 3) {
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = tris[t + k], b = tris[t + (k + 1) % 3];
-      edges.insert({std::min(a, b), std::max(a, b)});
+      edges.push_back({std::min(a, b), std::max(a, b)});
     }
   }
-  return static_cast<int>(used.size() + edges.size() + tris.size() / 3);
+  std::sort(edges.begin(), edges.end());
+  const std::size_t unique_edges =
+      static_cast<std::size_t>(std::unique(edges.begin(), edges.end()) - edges.begin());
+  return static_cast<int>(vertices + unique_edges + tris.size() / 3);
 }
 
 Vec3 TriangleNormal(const std::vector<Vec3>& x, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
@@ -179,7 +187,9 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& reque
     }
     welded.insert(welded.end(), {a, b, c});
   }
-  std::set<std::uint32_t> used_before(welded.begin(), welded.end());
+  std::vector<std::uint32_t> used_before(welded);
+  std::sort(used_before.begin(), used_before.end());
+  used_before.erase(std::unique(used_before.begin(), used_before.end()), used_before.end());
   std::size_t used_count_input = 0;
   {
     std::vector<char> used(nv, 0);
@@ -200,6 +210,48 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& reque
         " control vertices is more than the " + std::to_string(full) +
         " that splitting the whole mesh gives; use a smaller --control-vertices");
   }
+  // An all-quad input at the target count is already a control mesh: kept as it is (a regular
+  // grid stays regular), if its quads are convex and not degenerate.
+  if (options.method == ControlMeshMethod::kRemesh &&
+      mesh.face_vertices.size() == 4u * static_cast<std::size_t>(mesh.num_faces()) &&
+      std::abs(mesh.num_vertices() - options.target_vertices) <=
+          std::max(4, static_cast<int>(
+                          std::lround(options.remesh.tolerance * options.target_vertices))) &&
+      ValidatePolygonMesh(mesh).ok()) {
+    QuadRemeshReport q;
+    q.target_vertices = options.target_vertices;
+    MeasureQuadMesh(mesh, &q);
+    bool convex = true;
+    for (Index f = 0; f < mesh.num_faces() && convex; ++f) {
+      const Index* v = mesh.face_vertices.data() + mesh.face_offsets[f];
+      convex = QuadQuality(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]],
+                           mesh.positions[v[3]]) > 0.0;
+    }
+    if (convex && q.vertices == mesh.num_vertices() && q.min_corner_angle_deg > 20.0) {
+      inf.method = "given quads";
+      inf.quality = q;
+      inf.max_valence = q.max_valence;
+      *control = mesh;
+      CompactUnusedVertices(control);
+      return Status::Ok();
+    }
+  }
+  if (options.method == ControlMeshMethod::kRemesh) {
+    QuadRemeshOptions ro = options.remesh;
+    ro.target_vertices = options.target_vertices;
+    PolygonMesh remeshed;
+    QuadRemeshReport rr;
+    const Status rs = QuadRemesh(x, welded, where, ro, &remeshed, &rr);
+    if (rs.ok()) {
+      inf.method = "remesh";
+      inf.quality = rr;
+      inf.max_valence = rr.max_valence;
+      *control = std::move(remeshed);
+      return Status::Ok();
+    }
+    inf.fallback = rs.message();
+  }
+  inf.method = "simplify";
   // Find the triangle count whose split is closest to the target (V + E + F ~ 3 F), among
   // simplifications that stay manifold and consistently oriented after the valence flips
   // (meshopt_simplify can pinch thin parts of low-poly meshes into non-manifold edges).
@@ -350,9 +402,9 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& reque
   }
   s = ValidatePolygonMesh(out);
   if (!s.ok()) return s;
-  std::vector<int> val(out.positions.size(), 0);
-  for (Index i : out.face_vertices) ++val[i];
-  inf.max_valence = *std::max_element(val.begin(), val.end());
+  inf.quality.target_vertices = options.target_vertices;
+  MeasureQuadMesh(out, &inf.quality);
+  inf.max_valence = inf.quality.max_valence;
   *control = std::move(out);
   return Status::Ok();
 }

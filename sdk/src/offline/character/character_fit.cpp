@@ -8,6 +8,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <numeric>
@@ -94,30 +95,19 @@ VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalP
   return b;
 }
 
-/// Extra data points inside triangles much larger than the typical edge (low-poly meshes have
-/// large flat triangles with no vertex inside, where the surface would be unconstrained): a
-/// barycentric grid of spacing about the median edge length, interior points only.
-std::vector<Vec3> AreaSamples(const PolygonMesh& mesh) {
-  std::vector<double> edges;
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
-    for (int k = 0; k < 3; ++k) {
-      edges.push_back(glm::length(mesh.positions[v[k]] - mesh.positions[v[(k + 1) % 3]]));
-    }
-  }
+/// Extra data points inside the triangles, so the surface follows the source between its
+/// vertices: a barycentric grid of about `spacing` in every triangle longer than twice that,
+/// interior points only (the vertices are data already).
+std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing) {
   std::vector<Vec3> out;
-  if (edges.empty()) return out;
-  std::nth_element(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(edges.size() / 2),
-                   edges.end());
-  const double h = edges[edges.size() / 2];
-  if (!(h > 0.0)) return out;
+  if (!(spacing > 0.0)) return out;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
     const Vec3 &a = mesh.positions[v[0]], &b = mesh.positions[v[1]], &c = mesh.positions[v[2]];
     const double longest =
         std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
-    if (!(longest > 1.5 * h)) continue;
-    const int n = std::min(64, static_cast<int>(std::ceil(longest / h)));
+    if (!(longest > 2.0 * spacing)) continue;
+    const int n = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
     for (int i = 1; i < n; ++i) {
       for (int j = 1; i + j < n; ++j) {
         const double s = double(i) / n, t = double(j) / n;
@@ -126,6 +116,16 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh) {
     }
   }
   return out;
+}
+
+double Area(const PolygonMesh& mesh) {
+  double area = 0.0;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
+    area += 0.5 * glm::length(glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
+                                         mesh.positions[v[2]] - mesh.positions[v[0]]));
+  }
+  return area;
 }
 
 /// A mesh welded by exact position over all its primitives (glTF splits vertices at UV and
@@ -233,11 +233,6 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
                          const std::string& stage, FittedSurface* fitted, FitReport* fr) {
   std::string reason = CheckComponent(dense, options.min_vertices);
   if (!reason.empty()) return reason;
-  FitInput input;
-  input.points = dense.positions;  // first, so point_fits[i] is vertex i's
-  const std::vector<Vec3> extra = AreaSamples(dense);
-  input.points.insert(input.points.end(), extra.begin(), extra.end());
-  input.mesh = &dense;
   FitOptions fo = options.fit;
   fo.holdout = 0.0;
   if (options.vertex_ratio > 0.0) {
@@ -245,8 +240,23 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
         std::max(options.min_control_vertices,
                  static_cast<int>(std::lround(options.vertex_ratio * dense.num_vertices())));
   }
-  // A small component gets the full split of its own (non-degenerate) triangles, no more.
+  // No more control vertices than the component has vertices (its own resolution), and
+  // never more than the full split of its own triangles.
+  fo.control_vertices = std::max(8, std::min(fo.control_vertices, dense.num_vertices()));
+  fo.remesh.max_vertices = dense.num_vertices();
+  // ... unless its thin parts need more: the count grows until the remeshed triangle
+  // mesh follows the component within max_deviation of its diagonal.
+  fo.remesh.max_deviation = options.max_deviation;
+  fo.remesh.sizing.max_turn = options.max_turn;
   fo.clamp_control_vertices = true;
+  FitInput input;
+  input.points = dense.positions;  // first, so point_fits[i] is vertex i's
+  if (options.samples_per_control_edge > 0.0) {
+    const double edge = std::sqrt(Area(dense) / fo.control_vertices);
+    const std::vector<Vec3> extra = AreaSamples(dense, edge / options.samples_per_control_edge);
+    input.points.insert(input.points.end(), extra.begin(), extra.end());
+  }
+  input.mesh = &dense;
   if (options.progress) {
     fo.progress = [&](const std::string& s) { options.progress(stage + ": " + s); };
   }
@@ -346,6 +356,7 @@ Index MeshSkin(const Asset& asset, std::size_t m) {
   return kInvalidIndex;
 }
 
+
 }  // namespace
 
 Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Character* out,
@@ -419,6 +430,32 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
       }
       if (skin != kInvalidIndex) TransferSkin(mesh, w, components, c, cm, &part);
       part.fit = Summary(dense, fr, part_sum / static_cast<double>(cm.global.size()), part_max);
+      rep.part_control_meshes.push_back(fr.control_mesh);
+      std::string note;
+      if (fr.control_vertices > dense.num_vertices()) {
+        const QuadRemeshReport& q = fr.control_mesh.quality;
+        char deviation[64], turn[64];
+        std::snprintf(deviation, sizeof(deviation), "%.2g", q.deviation);
+        std::snprintf(turn, sizeof(turn), "%.3g", options.max_turn);
+        note = "part " + std::to_string(ch.parts.size()) + " (" + stage + ") has " +
+               std::to_string(fr.control_vertices) + " control vertices for " +
+               std::to_string(dense.num_vertices()) + " vertices: " +
+               (q.grown_target > q.target_vertices
+                    ? "its thin parts need them (the remesh follows the part within " +
+                          std::string(deviation) + " edge lengths only from " +
+                          std::to_string(q.grown_target) + " vertices on)"
+                    : "its remesh cannot be coarser: every edge of the remeshed triangle "
+                      "mesh may turn the surface normal by at most " +
+                          std::string(turn) +
+                          " radians, and each of its triangles becomes 3 or 4 quads");
+        if (!fr.control_mesh.fallback.empty()) {
+          note = "part " + std::to_string(ch.parts.size()) + " (" + stage + ") has " +
+                 std::to_string(fr.control_vertices) + " control vertices for " +
+                 std::to_string(dense.num_vertices()) + " vertices: the remesh failed (" +
+                 fr.control_mesh.fallback + ") and the simplification's split was used";
+        }
+      }
+      rep.part_notes.push_back(note);
       ch.parts.push_back(std::move(part));
       ++rep.parts_fitted;
     }

@@ -102,6 +102,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   if (input.control) {
     fitted.control_mesh = *input.control;
     CompactUnusedVertices(&fitted.control_mesh);
+    rep.control_mesh.method = "given";
   } else {
     if (!input.mesh) {
       return Status::InvalidInput(where +
@@ -111,7 +112,9 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     ControlMeshOptions cm;
     cm.target_vertices = options.control_vertices;
     cm.clamp_to_full_split = options.clamp_control_vertices;
-    Status s = BuildControlMesh(*input.mesh, cm, &fitted.control_mesh);
+    cm.method = options.control_method;
+    cm.remesh = options.remesh;
+    Status s = BuildControlMesh(*input.mesh, cm, &fitted.control_mesh, &rep.control_mesh);
     if (!s.ok()) return s;
   }
   Status s = BuildControlSurface(fitted.control_mesh, options.domain, &fitted.surface);
@@ -151,6 +154,8 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     // A built control mesh is all quads, so its vertices are the quad mesh's.
     fitted.control_mesh.positions = fitted.surface.control.positions;
   }
+  // A given control mesh's quality (a built one's is measured as built, before the fit).
+  if (input.control) MeasureQuadMesh(fitted.control_mesh, &rep.control_mesh.quality);
   rep.seconds.control_mesh = SecondsSince(t0);
 
   // 2. Projection and optimisation of the fitted points.

@@ -8,14 +8,16 @@
 
 namespace dermis {
 
-Status Quadrangulate(const PolygonMesh& mesh, QuadMesh* out) {
+namespace {
+
+Status Split(const PolygonMesh& mesh, bool keep_quads, QuadMesh* out) {
   MeshTopology topo;
   Status s = MeshTopology::Build(mesh.num_vertices(), mesh.face_offsets, mesh.face_vertices, &topo);
   if (!s.ok()) return s.WithContext(mesh.source_name.empty() ? "mesh" : mesh.source_name);
   QuadMesh q;
   q.num_input_vertices = mesh.num_vertices();
   q.positions = mesh.positions;
-  if (topo.is_all_quads()) {
+  if (keep_quads && topo.is_all_quads()) {
     q.quads = mesh.face_vertices;
     q.quad_source_face.resize(mesh.num_faces());
     for (Index f = 0; f < mesh.num_faces(); ++f) q.quad_source_face[f] = f;
@@ -51,5 +53,11 @@ Status Quadrangulate(const PolygonMesh& mesh, QuadMesh* out) {
   *out = std::move(q);
   return Status::Ok();
 }
+
+}  // namespace
+
+Status Quadrangulate(const PolygonMesh& mesh, QuadMesh* out) { return Split(mesh, true, out); }
+
+Status SplitIntoQuads(const PolygonMesh& mesh, QuadMesh* out) { return Split(mesh, false, out); }
 
 }  // namespace dermis

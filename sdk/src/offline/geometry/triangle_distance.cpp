@@ -333,6 +333,16 @@ Index TriangleDistanceTree::BuildNode(Index begin, Index end, int depth,
 }
 
 ClosestPoint TriangleDistanceTree::Query(const Vec3& p, double max_distance) const {
+  return QueryImpl(p, max_distance, nullptr);
+}
+
+ClosestPoint TriangleDistanceTree::QueryIf(const Vec3& p, const TriangleFilter& accept,
+                                           double max_distance) const {
+  return QueryImpl(p, max_distance, accept ? &accept : nullptr);
+}
+
+ClosestPoint TriangleDistanceTree::QueryImpl(const Vec3& p, double max_distance,
+                                             const TriangleFilter* accept) const {
   ClosestPoint result;
   result.distance = kInf;
   if (nodes_.empty() || !(max_distance >= 0.0) || !IsFinite(p)) return result;
@@ -356,11 +366,12 @@ ClosestPoint TriangleDistanceTree::Query(const Vec3& p, double max_distance) con
     if (nd.count > 0) {
       const Index last = nd.right_or_first + nd.count;
       for (Index i = nd.right_or_first; i < last; ++i) {
+        const Index id = triangle_ids_[static_cast<std::size_t>(i)];
+        if (accept && !(*accept)(id)) continue;
         const Corners& t = corners_[static_cast<std::size_t>(i)];
         Vec3 bary;
         const Vec3 q = ClosestPointOnTriangle(p, t.a, t.b, t.c, &bary);
         const double d2 = Distance2(p, q);
-        const Index id = triangle_ids_[static_cast<std::size_t>(i)];
         if (d2 < best_d2 || (d2 == best_d2 && (best == kInvalidIndex || id < best))) {
           best_d2 = d2;
           best = id;

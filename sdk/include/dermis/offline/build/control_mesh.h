@@ -4,10 +4,23 @@
 /// "Control mesh").
 #pragma once
 
+#include <string>
+
 #include "dermis/core/status.h"
+#include "dermis/offline/build/quad_remesh.h"
 #include "dermis/offline/geometry/polygon_mesh.h"
 
 namespace dermis {
+
+/// How BuildControlMesh() makes the control mesh.
+enum class ControlMeshMethod {
+  /// Quad remesh (quad_remesh.h): isotropic triangles paired into quads and split once;
+  /// mostly regular, well-shaped quads. The default.
+  kRemesh,
+  /// The previous method: meshoptimizer's simplification, valence flips, and every triangle
+  /// split into three quads. Used when the remesh fails (the report says why).
+  kSimplify,
+};
 
 /// Options of BuildControlMesh().
 struct ControlMeshOptions {
@@ -16,6 +29,9 @@ struct ControlMeshOptions {
   /// True: a target above the full split (every usable triangle split into three quads) is
   /// lowered to it; false: such a target is an error.
   bool clamp_to_full_split = false;
+  ControlMeshMethod method = ControlMeshMethod::kRemesh;
+  /// Options of the remesh (its target_vertices is ignored: target_vertices above is used).
+  QuadRemeshOptions remesh;
 };
 
 /// What BuildControlMesh() did.
@@ -26,16 +42,27 @@ struct ControlMeshInfo {
   int simplified_triangles = 0;
   int edge_flips = 0;   ///< Flips that evened out the valences.
   int max_valence = 0;  ///< Largest valence of the resulting quad mesh.
+  /// "remesh" or "simplify": the method that made the mesh.
+  std::string method;
+  /// Why the remesh was not used when it was asked for (empty otherwise).
+  std::string fallback;
+  /// Quality of the result (counts, valence-4 share, corner angles; the remesh's own figures
+  /// when it made the mesh).
+  QuadRemeshReport quality;
 };
 
 /// Builds a control mesh from a polygon mesh (faces are fan-triangulated): welds vertices
-/// with identical positions (meshoptimizer's remap), drops degenerate triangles, simplifies to
-/// the triangle count whose one-split quad mesh has about `target_vertices` vertices
-/// (meshopt_simplify, boundaries may slide along themselves but stay open), evens out valences
-/// by edge flips, splits every triangle into three quads and moves the new edge and face points
-/// onto the input surface. Boundaries and separate components are kept. The result is an
-/// all-quad mesh that passes ValidatePolygonMesh(). Fails with a message naming the mesh if the
-/// mesh has too few vertices or the target cannot be met.
+/// with identical positions (meshoptimizer's remap), drops degenerate triangles, then
+/// - kRemesh (default): QuadRemesh() of the welded triangles at `target_vertices`; if it fails
+///   (non-manifold input, a result that would not keep the components or loops), the message
+///   goes to `info->fallback` and kSimplify is used instead;
+/// - kSimplify: simplifies to the triangle count whose one-split quad mesh has about
+///   `target_vertices` vertices (meshopt_simplify, boundaries may slide along themselves but
+///   stay open), evens out valences by edge flips, splits every triangle into three quads and
+///   moves the new edge and face points onto the input surface.
+/// Boundaries and separate components are kept. The result is an all-quad mesh that passes
+/// ValidatePolygonMesh(). Fails with a message naming the mesh if the mesh has too few
+/// vertices or the target cannot be met.
 Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& options,
                         PolygonMesh* control, ControlMeshInfo* info = nullptr);
 

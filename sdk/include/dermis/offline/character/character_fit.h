@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "dermis/offline/fit/surface_fit.h"
 #include "dermis/runtime/character.h"
@@ -30,12 +31,25 @@ struct CharacterFitOptions {
     return f;
   }();
   /// Control vertices per component = welded vertices * vertex_ratio, at least
-  /// min_control_vertices, at most what splitting the whole component into quads gives.
+  /// min_control_vertices, and never more than the component's own welded vertices (the
+  /// control mesh is a quad remesh of the component, control_mesh.h; a component too small
+  /// to remesh below its vertex count gets more, and the report says so).
   double vertex_ratio = 0.25;
   /// Low-poly game meshes (a few hundred vertices) need a control mesh close to their own
-  /// triangles: a coarser one puts the smooth surface far inside sharp features (measured on
+  /// resolution: a coarser one puts the smooth surface far inside sharp features (measured on
   /// the Khronos characters in docs/characters.md).
   int min_control_vertices = 300;
+  /// The control mesh grows past that count while its remeshed triangle mesh is further than
+  /// this many local edge lengths from the component (a lost leg, ear or tail);
+  /// QuadRemeshOptions::max_deviation.
+  double max_deviation = 1.0;
+  /// Every edge of the remeshed triangle mesh turns the normal by at most about this many
+  /// radians (SizingOptions::max_turn), whatever the count: a limb keeps enough edges around.
+  double max_turn = 1.0;
+  /// Data points inside the triangles: a barycentric grid whose spacing is the control mesh's
+  /// mean edge (sqrt(area / control vertices)) divided by this, so the surface follows the
+  /// source between its vertices. 0: vertices only.
+  double samples_per_control_edge = 1.0;
   /// Components with fewer welded vertices are left unfitted ("too small").
   int min_vertices = 8;
   /// Called with "mesh M component C: stage" as the fit progresses (may be empty).
@@ -50,13 +64,17 @@ struct CharacterFitReport {
   double e1_mean = 0.0;  ///< Mean |p - D(z_p)| over bound original vertices (model units).
   double e1_max = 0.0;
   double seconds = 0.0;
+  /// Per fitted part (in Character::parts order): how its control mesh was made, its quality,
+  /// and a note when it has more control vertices than the part has welded vertices.
+  std::vector<ControlMeshInfo> part_control_meshes;
+  std::vector<std::string> part_notes;
 };
 
 /// Fits every mesh of `asset` (which must pass ValidateAsset()). The data points of a component
-/// are its welded vertices plus interior samples of triangles much larger than the median edge
-/// (spacing about that edge), so large flat triangles constrain the surface too; errors
-/// (E1) are reported over the vertices. Only triangle primitives
-/// (lists, strips, fans) are fitted; points and lines stay as they are. A component that
+/// are its welded vertices plus interior samples of its triangles (spacing a fraction of the
+/// control mesh's edge, CharacterFitOptions::samples_per_control_edge), so the surface follows
+/// the source between its vertices; errors (E1) are reported over the vertices. Only triangle
+/// primitives (lists, strips, fans) are fitted; points and lines stay as they are. A component that
 /// cannot be fitted (too few vertices, degenerate, non-manifold, or a fit error) is recorded
 /// in Character::unfitted with the reason and keeps its original geometry.
 Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Character* out,

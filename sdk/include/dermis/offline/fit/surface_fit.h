@@ -26,6 +26,9 @@ namespace dermis {
 struct FitOptions {
   /// Wanted control vertices when the control mesh is built from the data.
   int control_vertices = 540;
+  /// How the control mesh is built from the data (control_mesh.h), and the remesher's options.
+  ControlMeshMethod control_method = ControlMeshMethod::kRemesh;
+  QuadRemeshOptions remesh;
   /// True: a control_vertices target above what splitting the whole mesh gives is lowered to
   /// that count; false: it is an error (the CLI's --control-vertices).
   bool clamp_control_vertices = false;
@@ -89,6 +92,8 @@ struct FitReport {
   std::int64_t points_outside = 0;        ///< Left every chart in projection (not fitted).
   std::int64_t points_not_converged = 0;  ///< Fitted from their projection only (folds).
   std::int64_t control_vertices = 0, control_faces = 0;
+  /// How the control mesh was built and its quality (method "given" for a given one).
+  ControlMeshInfo control_mesh;
   std::int64_t control_fit_rounds = 0;   ///< Control-vertex fit rounds done (FitOptions).
   std::int64_t coefficients = 0;         ///< Stored displacement coefficients, all levels.
   std::int64_t finest_coefficients = 0;  ///< Those of each chart's finest level only.

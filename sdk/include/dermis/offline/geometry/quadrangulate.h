@@ -30,4 +30,8 @@ struct QuadMesh {
 /// vertices stay where they are.
 Status Quadrangulate(const PolygonMesh& mesh, QuadMesh* out);
 
+/// The same split applied to every face, quads included (a quad becomes 4): face points at
+/// [V, V + F), edge points at [V + F, V + F + E) in MeshTopology's edge order.
+Status SplitIntoQuads(const PolygonMesh& mesh, QuadMesh* out);
+
 }  // namespace dermis

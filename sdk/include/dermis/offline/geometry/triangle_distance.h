@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -58,6 +59,16 @@ class TriangleDistanceTree {
   ClosestPoint Query(const Vec3& p,
                      double max_distance = std::numeric_limits<double>::infinity()) const;
 
+  /// Decides from a triangle's input index whether a query may return it.
+  using TriangleFilter = std::function<bool(Index triangle)>;
+
+  /// As Query(), restricted to the triangles `accept` returns true for (an empty filter accepts
+  /// every triangle): the exact closest point among them, with the same tie rule. Used to
+  /// project onto the side of a thin part that faces a given way, or onto one boundary loop.
+  /// Thread-safe if `accept` is.
+  ClosestPoint QueryIf(const Vec3& p, const TriangleFilter& accept,
+                       double max_distance = std::numeric_limits<double>::infinity()) const;
+
   /// Number of triangles in the tree (0 before a successful Build()).
   Index num_triangles() const { return static_cast<Index>(triangle_ids_.size()); }
 
@@ -80,6 +91,8 @@ class TriangleDistanceTree {
   /// Appends the nodes (without boxes) of the subtree over items[begin, end), reordering the
   /// items into leaf order; returns the subtree's node index. `max_depth` tracks the depth.
   Index BuildNode(Index begin, Index end, int depth, std::vector<BuildItem>* items, int* max_depth);
+  /// The traversal behind Query() and QueryIf(); `accept` may be null (every triangle).
+  ClosestPoint QueryImpl(const Vec3& p, double max_distance, const TriangleFilter* accept) const;
 
   std::vector<Node> nodes_;          ///< Depth-first order; nodes_[0] is the root.
   std::vector<Corners> corners_;     ///< Triangles in leaf order.

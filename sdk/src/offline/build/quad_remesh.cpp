@@ -1,0 +1,355 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The automatic control mesh as a quad remesh (docs/fitting.md, "Control mesh"; Yoon section 4
+// used a commercial remesher): a meshoptimizer seed, adaptive isotropic remeshing (Botsch &
+// Kobbelt 2004) at the triangle count whose final split meets the target, Blossom-Quad pairing
+// (Remacle et al. 2012), one Catmull-Clark style split and relaxation on the input surface.
+#include "dermis/offline/build/quad_remesh.h"
+
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <array>
+#include <climits>
+#include <cmath>
+#include <limits>
+
+#include "dermis/core/mesh_topology.h"
+#include "dermis/offline/build/reference_surface.h"
+#include "dermis/offline/geometry/quadrangulate.h"
+#include "dermis/offline/geometry/triangle_distance.h"
+
+namespace dermis {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Vertices of the all-quad mesh one split of `poly` gives: V + E + F.
+int SplitCount(const PolygonMesh& poly) {
+  std::vector<std::array<Index, 2>> edges;
+  for (Index f = 0; f < poly.num_faces(); ++f) {
+    const Index b = poly.face_offsets[static_cast<std::size_t>(f)], s = poly.face_size(f);
+    for (Index k = 0; k < s; ++k) {
+      const Index a = poly.face_vertices[static_cast<std::size_t>(b + k)];
+      const Index c = poly.face_vertices[static_cast<std::size_t>(b + (k + 1) % s)];
+      edges.push_back({std::min(a, c), std::max(a, c)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  const std::size_t e =
+      static_cast<std::size_t>(std::unique(edges.begin(), edges.end()) - edges.begin());
+  return poly.num_vertices() + static_cast<int>(e) + poly.num_faces();
+}
+
+// The seed: the input simplified to about `target` triangles with its borders locked, compacted
+// in first-use order; empty if it does not keep the input's components and loops.
+bool MakeSeed(const ReferenceSurface& ref, const std::vector<std::uint32_t>& triangles,
+              std::size_t target, RemeshTriangles* seed) {
+  const std::vector<Vec3>& x = ref.positions();
+  std::vector<std::uint32_t> simplified = triangles;
+  if (target < triangles.size() / 3) {
+    std::vector<float> xyz(3 * x.size());
+    for (std::size_t v = 0; v < x.size(); ++v) {
+      for (int c = 0; c < 3; ++c)
+        xyz[3 * v + static_cast<std::size_t>(c)] = static_cast<float>(x[v][c]);
+    }
+    std::vector<std::uint32_t> out(triangles.size());
+    const std::size_t n =
+        meshopt_simplify(out.data(), triangles.data(), triangles.size(), xyz.data(), x.size(),
+                         3 * sizeof(float), 3 * target, 1.0f, meshopt_SimplifyLockBorder, nullptr);
+    out.resize(n);
+    simplified.swap(out);
+  }
+  if (simplified.empty()) return false;
+  std::vector<Index> map(x.size(), kInvalidIndex);
+  RemeshTriangles s;
+  for (std::uint32_t& v : simplified) {
+    if (map[v] == kInvalidIndex) {
+      map[v] = static_cast<Index>(s.positions.size());
+      s.positions.push_back(x[v]);
+      s.loop.push_back(ref.vertex_loop(static_cast<Index>(v)));
+    }
+    v = static_cast<std::uint32_t>(map[v]);
+  }
+  s.triangles = std::move(simplified);
+  ReferenceSurface check;
+  if (!check.Build(s.positions, s.triangles, "seed").ok()) return false;
+  if (check.num_components() != ref.num_components() || check.num_loops() != ref.num_loops()) {
+    return false;
+  }
+  *seed = std::move(s);
+  return true;
+}
+
+// Two-sided distance between the input and a triangle mesh on it, relative to the local
+// target edge length: input vertices and triangle centroids to the mesh, the mesh's triangle
+// centroids and edge midpoints to the input. Rounding a crease costs a fraction of an edge; a
+// part the mesh lost (a leg, a tail) costs many.
+double Deviation(const ReferenceSurface& ref, const SizingField& sizing,
+                 const RemeshTriangles& mesh) {
+  TriangleDistanceTree tree;
+  tree.Build(mesh.positions, mesh.triangles);
+  const std::vector<Vec3>& x = ref.positions();
+  const std::vector<std::uint32_t>& t = ref.triangles();
+  double d = 0.0;
+  for (std::size_t i = 0; i < t.size(); i += 3) {
+    const Vec3& n = ref.triangle_normal(static_cast<Index>(i / 3));
+    const Vec3 c = (x[t[i]] + x[t[i + 1]] + x[t[i + 2]]) / 3.0;
+    d = std::max(d, tree.Query(x[t[i]]).distance / sizing.At(x[t[i]], n));
+    d = std::max(d, tree.Query(c).distance / sizing.At(c, n));
+  }
+  const std::vector<Vec3>& y = mesh.positions;
+  const std::vector<std::uint32_t>& u = mesh.triangles;
+  for (std::size_t i = 0; i < u.size(); i += 3) {
+    const Vec3 n = glm::cross(y[u[i + 1]] - y[u[i]], y[u[i + 2]] - y[u[i]]);
+    for (const Vec3& p :
+         {(y[u[i]] + y[u[i + 1]] + y[u[i + 2]]) / 3.0, 0.5 * (y[u[i]] + y[u[i + 1]])}) {
+      d = std::max(d, ref.Project(p, Vec3(0.0), 0.0).distance / sizing.At(p, n));
+    }
+  }
+  return d;
+}
+
+}  // namespace
+
+void MeasureQuadMesh(const PolygonMesh& quads, QuadRemeshReport* report) {
+  QuadRemeshReport& r = *report;
+  r.vertices = quads.num_vertices();
+  r.faces = quads.num_faces();
+  MeshTopology topo;
+  if (!MeshTopology::Build(quads.num_vertices(), quads.face_offsets, quads.face_vertices, &topo)
+           .ok()) {
+    return;
+  }
+  r.components = topo.num_components();
+  r.boundary_loops = 0;
+  std::vector<char> seen(static_cast<std::size_t>(topo.num_halfedges()), 0);
+  for (Index h = 0; h < topo.num_halfedges(); ++h) {
+    if (topo.twin(h) != kInvalidIndex || seen[static_cast<std::size_t>(h)]) continue;
+    ++r.boundary_loops;
+    // Along the boundary: the next boundary half-edge leaves the end of this one.
+    for (Index cur = h; !seen[static_cast<std::size_t>(cur)];) {
+      seen[static_cast<std::size_t>(cur)] = 1;
+      Index next = topo.next(cur);
+      while (topo.twin(next) != kInvalidIndex) next = topo.next(topo.twin(next));
+      cur = next;
+    }
+  }
+  r.interior_vertices = r.interior_valence4 = r.max_valence = 0;
+  for (Index v = 0; v < topo.num_vertices(); ++v) {
+    r.max_valence = std::max(r.max_valence, topo.valence(v));
+    if (topo.is_boundary_vertex(v) || topo.valence(v) == 0) continue;
+    ++r.interior_vertices;
+    r.interior_valence4 += topo.valence(v) == 4 ? 1 : 0;
+  }
+  r.valence4_share = r.interior_vertices > 0
+                         ? static_cast<double>(r.interior_valence4) / r.interior_vertices
+                         : 1.0;
+  double lo = 180.0, hi = 0.0;
+  int good = 0, corners = 0;
+  for (Index f = 0; f < quads.num_faces(); ++f) {
+    const Index b = quads.face_offsets[static_cast<std::size_t>(f)], s = quads.face_size(f);
+    for (Index k = 0; k < s; ++k) {
+      auto at = [&](Index i) -> const Vec3& {
+        return quads.positions[static_cast<std::size_t>(
+            quads.face_vertices[static_cast<std::size_t>(b + (i + s) % s)])];
+      };
+      const Vec3 u = at(k + 1) - at(k), w = at(k - 1) - at(k);
+      const double a = std::atan2(glm::length(glm::cross(u, w)), glm::dot(u, w)) * 180.0 / kPi;
+      lo = std::min(lo, a), hi = std::max(hi, a);
+      good += (a >= 60.0 && a <= 120.0) ? 1 : 0;
+      ++corners;
+    }
+  }
+  r.min_corner_angle_deg = lo;
+  r.max_corner_angle_deg = hi;
+  r.corners_60_120_share = corners > 0 ? static_cast<double>(good) / corners : 0.0;
+}
+
+Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uint32_t>& triangles,
+                  const std::string& name, const QuadRemeshOptions& options, PolygonMesh* out,
+                  QuadRemeshReport* report) {
+  QuadRemeshReport rep;
+  rep.target_vertices = options.target_vertices;
+  ReferenceSurface ref;
+  Status s = ref.Build(positions, triangles, name);
+  if (!s.ok()) return s;
+  rep.components = ref.num_components();
+  rep.boundary_loops = ref.num_loops();
+  const int cap = options.max_vertices > 0 ? options.max_vertices : INT_MAX;
+  const int target = std::min(options.target_vertices, cap);
+  if (target < 8) {
+    return Status::InvalidInput(name + ": target of " + std::to_string(target) +
+                                " control vertices is below 8");
+  }
+  // Euler characteristic of the input: a closed triangle mesh of V vertices whose triangles
+  // are all paired splits into V + E' + F' = 4 V - 3 chi quad vertices.
+  double chi = 0.0;
+  {
+    std::vector<std::array<std::uint32_t, 2>> edges;
+    std::vector<char> used(positions.size(), 0);
+    for (std::size_t t = 0; t < triangles.size(); t += 3) {
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = triangles[t + static_cast<std::size_t>(k)];
+        const std::uint32_t b = triangles[t + static_cast<std::size_t>((k + 1) % 3)];
+        edges.push_back({std::min(a, b), std::max(a, b)});
+        used[a] = 1;
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    const std::size_t edge_count =
+        static_cast<std::size_t>(std::unique(edges.begin(), edges.end()) - edges.begin());
+    std::size_t vertex_count = 0;
+    for (char u : used) vertex_count += u ? 1 : 0;
+    chi = static_cast<double>(vertex_count) - static_cast<double>(edge_count) +
+          static_cast<double>(triangles.size() / 3);
+  }
+  // 1. Seed, for the largest target the growth below may reach.
+  const std::size_t nt = triangles.size() / 3;
+  const double v_first = std::max(4.0 * rep.components, (target + 3.0 * chi) / 4.0);
+  std::size_t seed_target =
+      std::max<std::size_t>(static_cast<std::size_t>(options.min_seed_triangles),
+                            static_cast<std::size_t>(2.0 * options.seed_factor * v_first *
+                                                     (options.max_deviation > 0.0 ? 2.0 : 1.0)));
+  RemeshTriangles seed;
+  for (;;) {
+    if (seed_target >= nt) {
+      if (!MakeSeed(ref, triangles, nt, &seed)) {
+        return Status::Internal(name + ": the input is not a usable seed for remeshing");
+      }
+      break;
+    }
+    if (MakeSeed(ref, triangles, seed_target, &seed)) break;
+    seed_target *= 2;
+  }
+  rep.seed_vertices = static_cast<int>(seed.positions.size());
+  std::vector<double> loop_length(seed.positions.size(), 0.0);
+  for (std::size_t i = 0; i < loop_length.size(); ++i) {
+    if (seed.loop[i] >= 0) loop_length[i] = ref.loop_length(seed.loop[i]);
+  }
+  // 2-4 at a target: sizing on the seed, isotropic remeshing with the scale corrected from the
+  // count reached, pairing. With max_deviation, the target grows until the triangle mesh
+  // follows the input that closely.
+  RemeshTriangles mesh;
+  PolygonMesh paired;
+  QuadPairingStats pairing;
+  SizingField sizing;
+  int goal = target;
+  for (int growth = 0;; ++growth) {
+    const double v_tri = std::max(4.0 * rep.components, (goal + 3.0 * chi) / 4.0);
+    SizingOptions so = options.sizing;
+    if (!(so.curvature_radius > 0.0)) {
+      // Half the edge of a uniform mesh with the target's vertex count.
+      so.curvature_radius = 0.5 * std::sqrt(ref.area() / (0.5 * std::sqrt(3.0) * v_tri));
+    }
+    s = sizing.Build(seed.positions, seed.triangles, loop_length, so);
+    if (!s.ok()) return s.WithContext(name);
+    sizing.SetScaleForVertices(v_tri);
+    mesh = seed;
+    s = RemeshIsotropic(ref, sizing, options.isotropic, &mesh);
+    if (!s.ok()) return s.WithContext(name);
+    const int tolerance = std::max(4, static_cast<int>(std::lround(options.tolerance * goal)));
+    IsotropicRemeshOptions again = options.isotropic;
+    again.iterations = std::max(2, options.isotropic.iterations / 2);
+    const int goal_cap = options.max_deviation > 0.0 ? INT_MAX : cap;
+    for (int round = 0;; ++round) {
+      s = PairTrianglesIntoQuads(mesh.positions, mesh.triangles, options.pairing, &paired,
+                                 &pairing);
+      if (!s.ok()) return s.WithContext(name);
+      const int count = SplitCount(paired);
+      if ((std::abs(count - goal) <= tolerance && count <= goal_cap) || round >= 8) break;
+      const double vertices = static_cast<double>(mesh.positions.size());
+      if (round < 2) {
+        // The count grows by about 4 per triangle-mesh vertex.
+        const double wanted = std::max(4.0, vertices + (goal - count) / 4.0);
+        sizing.SetScaleForVertices(sizing.PredictedVertices() * wanted / vertices);
+        s = RemeshIsotropic(ref, sizing, again, &mesh);
+        if (!s.ok()) return s.WithContext(name);
+      } else if (options.max_deviation > 0.0 && count > goal) {
+        break;  // a count needed by the sizing's max_turn is not forced down
+      } else {
+        int delta = static_cast<int>(std::lround((goal - count) / 4.0));
+        if (delta == 0) delta = goal > count && count < goal_cap ? 1 : -1;
+        if (AdjustVertexCount(ref, sizing, delta, options.isotropic, &mesh) == 0) break;
+      }
+    }
+    if (!(options.max_deviation > 0.0)) break;
+    rep.deviation = Deviation(ref, sizing, mesh);
+    if (rep.deviation <= options.max_deviation || growth >= options.max_growth_steps) break;
+    goal = static_cast<int>(std::lround(goal * options.growth));
+  }
+  if (options.max_deviation > 0.0) rep.grown_target = goal;
+  {
+    rep.triangle_vertices = static_cast<int>(mesh.positions.size());
+    rep.quads_paired = pairing.quads;
+    rep.triangles_unpaired = pairing.triangles;
+    // 5. Split once into quads; new points onto the surface.
+    paired.source_name = name + " (paired)";
+    QuadMesh quads;
+    s = SplitIntoQuads(paired, &quads);
+    if (!s.ok()) return s;
+    MeshTopology topo;
+    s = MeshTopology::Build(paired.num_vertices(), paired.face_offsets, paired.face_vertices,
+                            &topo);
+    if (!s.ok()) return s.WithContext(name);
+    const Index nv = paired.num_vertices(), nf = paired.num_faces();
+    std::vector<int> loop(quads.positions.size(), -1);
+    for (Index v = 0; v < nv; ++v)
+      loop[static_cast<std::size_t>(v)] = mesh.loop[static_cast<std::size_t>(v)];
+    std::vector<Vec3> face_normal(static_cast<std::size_t>(nf), Vec3(0.0));
+    for (Index f = 0; f < nf; ++f) {
+      const Index b = paired.face_offsets[static_cast<std::size_t>(f)], sz = paired.face_size(f);
+      for (Index k = 0; k < sz; ++k) {
+        face_normal[static_cast<std::size_t>(f)] +=
+            glm::cross(paired.positions[static_cast<std::size_t>(
+                           paired.face_vertices[static_cast<std::size_t>(b + k)])],
+                       paired.positions[static_cast<std::size_t>(
+                           paired.face_vertices[static_cast<std::size_t>(b + (k + 1) % sz)])]);
+      }
+    }
+    for (Index f = 0; f < nf; ++f) {
+      Vec3& p = quads.positions[static_cast<std::size_t>(nv + f)];
+      const Vec3& n = face_normal[static_cast<std::size_t>(f)];
+      p = ref.Project(p, n, sizing.At(p, n)).point;
+    }
+    for (Index e = 0; e < topo.num_edges(); ++e) {
+      const Index h = topo.edge_halfedge(e);
+      const Index a = topo.halfedge_origin(h), b = topo.halfedge_dest(h);
+      const std::size_t v = static_cast<std::size_t>(nv + nf + e);
+      Vec3& p = quads.positions[v];
+      if (topo.twin(h) == kInvalidIndex) {
+        loop[v] = mesh.loop[static_cast<std::size_t>(a)];
+        p = ref.LoopBetween(loop[v], paired.positions[static_cast<std::size_t>(a)],
+                            paired.positions[static_cast<std::size_t>(b)], 0.5);
+        continue;
+      }
+      const Vec3 n = face_normal[static_cast<std::size_t>(topo.halfedge_face(h))] +
+                     face_normal[static_cast<std::size_t>(topo.halfedge_face(topo.twin(h)))];
+      p = ref.Project(p, n, sizing.At(p, n)).point;
+    }
+    PolygonMesh result;
+    result.source_name = name + " (control mesh)";
+    result.positions = quads.positions;
+    for (Index q = 0; q < quads.num_quads(); ++q) {
+      const Index* f = quads.quads.data() + 4 * q;
+      result.AddFace({f[0], f[1], f[2], f[3]});
+    }
+    s = RelaxQuadMesh(ref, sizing, loop, options.relax, &result, &rep.relax_rejected);
+    if (!s.ok()) return s.WithContext(name);
+    // The result must be a valid control mesh with the input's components and loops.
+    s = ValidatePolygonMesh(result);
+    if (!s.ok()) return Status::Internal(name + ": the quad remesh is invalid: " + s.message());
+    const int components = rep.components, loops = rep.boundary_loops;
+    MeasureQuadMesh(result, &rep);
+    if (rep.components != components || rep.boundary_loops != loops) {
+      return Status::Internal(name + ": the quad remesh has " + std::to_string(rep.components) +
+                              " components and " + std::to_string(rep.boundary_loops) +
+                              " boundary loops where the input has " + std::to_string(components) +
+                              " and " + std::to_string(loops));
+    }
+    *out = std::move(result);
+  }
+  if (report) *report = rep;
+  return Status::Ok();
+}
+
+}  // namespace dermis
