@@ -213,7 +213,7 @@ Status InspectDsurfBytes(std::string_view bytes, const std::string& name, bool w
   std::uint32_t version = 0;
   const Status s = ParseCharacter(bytes, name, &ch, &version);
   if (!s.ok()) return s;
-  if (version == kDsurfVersion) {
+  if (IsSurfaceDsurfVersion(version)) {
     (*report)["surface"] = DescribeSurface(ch.parts[0].surface);
     return Status::Ok();
   }
