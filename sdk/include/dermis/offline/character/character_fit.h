@@ -36,6 +36,7 @@ struct CharacterFitOptions {
     f.displacement.adaptive.validation = 0.0;
     f.displacement.adaptive.residual_threshold = 1.0;
     f.displacement.adaptive.min_improvement = 0.01;
+    f.displacement.adaptive.solver_iterations = 30;  // light smoothing converges slower
     // kMba (--displacement mba): plain MBA at density 2.2, no smoothing spline.
     f.displacement.density = 2.2;
     f.displacement.smoothing = 0.0;

@@ -47,7 +47,7 @@ struct AdaptiveDisplacementOptions {
   /// least this fraction.
   double min_improvement = 0.01;
   /// Conjugate-gradient steps per level, at most.
-  int solver_iterations = 20;
+  int solver_iterations = 12;
   /// ... or once the residual norm is below this fraction of the right-hand side's.
   double solver_tolerance = 1e-6;
   /// Weight of the charts' agreement with the common displacement (LevelFitOptions).
