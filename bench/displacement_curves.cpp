@@ -419,7 +419,8 @@ int main(int argc, char** argv) {
                       lr.level, static_cast<long long>(lr.nodes), lr.train_mean / sc.scale,
                       lr.validation_mean / sc.scale, lr.iterations);
         }
-        std::printf("    kept %d levels, nodes per level:", rep.levels);
+        std::printf("    kept %d levels (stopped by %s), nodes per level:", rep.levels,
+                    rep.stopped_by.c_str());
         for (std::int64_t n : rep.level_nodes) std::printf(" %lld", static_cast<long long>(n));
         std::printf("\n");
       }

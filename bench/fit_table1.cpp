@@ -288,6 +288,8 @@ int main(int argc, char** argv) {
                   lr.validation_mean / report.scale,
                   lr.level < report.displacement_fit.levels ? "" : "  (not kept)");
     }
+    std::printf("  %d levels kept, stopped by: %s\n", report.displacement_fit.levels,
+                report.displacement_fit.stopped_by.c_str());
   }
   return 0;
 }

@@ -100,6 +100,9 @@ nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
     }
     j["displacement_levels"] = trial;
   }
+  if (!r.displacement_fit.stopped_by.empty()) {
+    j["displacement_stopped_by"] = r.displacement_fit.stopped_by;
+  }
   j["levels"] = r.max_levels;
   j["threads"] = r.threads;
   j["unit"] = "data scaled so its bounding box's largest side is 1";

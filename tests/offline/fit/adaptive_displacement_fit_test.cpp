@@ -338,6 +338,7 @@ TEST_CASE("adaptive fit: the stopping rule stops on noise and follows a signal",
     CHECK(rep.levels <= 1);
     CHECK(rep.coefficients <= 16);
     REQUIRE(!rep.trial.empty());
+    CHECK(rep.stopped_by == "validation");
   }
   SECTION("a smooth signal with a little noise: levels are kept while they help") {
     test::Lcg rng(5);
@@ -351,6 +352,8 @@ TEST_CASE("adaptive fit: the stopping rule stops on noise and follows a signal",
     AdaptiveDisplacementReport rep;
     REQUIRE(FitAdaptiveDisplacement(half, targets, o, &data, &rep).ok());
     CHECK(rep.levels >= 4);
+    INFO("stopped by " << rep.stopped_by);
+    CHECK(rep.stopped_by == "validation");
     // The rule as stated: every kept level lowered the validation error by 1%, the next did not.
     for (std::size_t k = 1; k < rep.trial.size(); ++k) {
       const bool kept = static_cast<int>(k) < rep.levels;
@@ -433,6 +436,7 @@ TEST_CASE("adaptive fit: the coefficient budget and thread independence", "[adap
   REQUIRE(FitAdaptiveDisplacement(half, targets, o, &reference, &rep).ok());
   CHECK(rep.coefficients <= static_cast<std::int64_t>(0.1 * static_cast<double>(targets.size())));
   CHECK(rep.coefficients == static_cast<std::int64_t>(reference.values.size()));
+  CHECK(rep.stopped_by == "budget");
   for (int threads : {2, 3, 5}) {
     o.threads = threads;
     BsplineDisplacementData d;

@@ -91,6 +91,11 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
   // 1. The stopping rule: fit the points outside the validation split level by level, and
   // keep a level only while it lowers the validation error by min_improvement.
   int levels = max_levels;
+  rep.stopped_by = "max levels";
+  // Why a level found no node: the budget was spent, or the data support none.
+  auto NoNodes = [](std::int64_t left) {
+    return left == 0 ? std::string("budget") : std::string("no supported node");
+  };
   std::vector<std::uint32_t> train, validation;
   for (std::uint32_t i : all) {
     (IsValidationPoint(i, options.validation, options.validation_seed) ? validation : train)
@@ -98,7 +103,10 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
   }
   const bool trial_run = !validation.empty() && !train.empty();
   if (trial_run) {
-    DisplacementLevelFitter trial(half_extent, targets, train, validation, lopt);
+    // The trial only compares levels: half the solver steps.
+    LevelFitOptions topt = lopt;
+    topt.iterations = std::max(1, lopt.iterations / 2);
+    DisplacementLevelFitter trial(half_extent, targets, train, validation, topt);
     double previous = trial.EvalError();
     std::int64_t used = 0;
     levels = 0;
@@ -111,7 +119,12 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
       lr.train_mean = trial.FitError();
       lr.validation_mean = trial.EvalError();
       rep.trial.push_back(lr);
-      if (lr.nodes == 0 || !(lr.validation_mean < (1.0 - options.min_improvement) * previous)) {
+      if (lr.nodes == 0) {
+        rep.stopped_by = NoNodes(budget(train.size(), used));
+        break;
+      }
+      if (!(lr.validation_mean < (1.0 - options.min_improvement) * previous)) {
+        rep.stopped_by = "validation";
         break;
       }
       previous = lr.validation_mean;
@@ -140,13 +153,17 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
       // their error by less than min_improvement ends the fit
       // (and is dropped).
       if (!trial_run && !(fit.FitError() < (1.0 - options.min_improvement) * before)) {
+        rep.stopped_by = "fitted points";
         levels = k;
         break;
       }
       rep.level_nodes.push_back(n);
       nodes[static_cast<std::size_t>(k)].resize(nc);
       values[static_cast<std::size_t>(k)].resize(nc);
-      if (n == 0) {  // the budget is spent, or no node is supported
+      if (n == 0) {
+        if (rep.stopped_by.empty() || rep.stopped_by == "max levels") {
+          rep.stopped_by = NoNodes(budget(all.size(), used));
+        }
         levels = k;
         break;
       }

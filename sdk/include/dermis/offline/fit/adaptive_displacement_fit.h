@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "dermis/core/status.h"
@@ -25,7 +26,7 @@ struct AdaptiveDisplacementOptions {
   /// support weigh at least this much, sum over them of psi_j(p) B_node(z_j(p)) (the weights
   /// of all nodes and charts at a point sum to 1, so no level can hold more nodes than
   /// points / min_node_weight).
-  double min_node_weight = 0.25;
+  double min_node_weight = 0.15;
   /// Residual criterion: a candidate node of level k > 0 is activated only if the weighted RMS
   /// residual of its points (after levels 0..k-1) exceeds residual_threshold times the mean
   /// validation error of level k - 1. 0 turns the criterion off.
@@ -68,8 +69,13 @@ struct AdaptiveLevelReport {
 struct AdaptiveDisplacementReport {
   std::vector<AdaptiveLevelReport> trial;  ///< The stopping rule's trial levels, in order.
   int levels = 0;                          ///< Levels kept.
-  std::int64_t coefficients = 0;           ///< Stored coefficients of the final fit.
-  std::vector<std::int64_t> level_nodes;   ///< Active nodes per kept level (final fit).
+  /// What ended the levels: "validation" (the stopping rule), "fitted points" (without a
+  /// validation split: the fitted points' error), "budget" (the coefficient budget was
+  /// spent), "no supported node" (the density and residual criteria left none) or
+  /// "max levels".
+  std::string stopped_by;
+  std::int64_t coefficients = 0;          ///< Stored coefficients of the final fit.
+  std::vector<std::int64_t> level_nodes;  ///< Active nodes per kept level (final fit).
 };
 
 /// Whether target i belongs to the validation split (a fixed hash of i and the seed).

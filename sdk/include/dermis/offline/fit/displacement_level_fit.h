@@ -30,10 +30,10 @@ struct LevelFitOptions {
   /// least this much: sum over the points of psi_j(p) B_node(z_j(p)). The weights of every
   /// node of every chart at a point sum to 1, so a level never holds more than
   /// points / min_node_weight nodes.
-  double min_node_weight = 0.25;
+  double min_node_weight = 0.15;
   /// Thin-plate weight of a chart's level, relative to the mean data weight of its nodes.
   double smoothing = 1e-3;
-  int iterations = 15;  ///< Conjugate-gradient steps per level, at most.
+  int iterations = 12;  ///< Conjugate-gradient steps per level, at most.
   /// The solver stops once the residual norm falls below this fraction of the right-hand side's.
   double tolerance = 1e-6;
   /// Weight of the consistency term: every chart's agreement with the common displacement,
