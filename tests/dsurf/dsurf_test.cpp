@@ -8,8 +8,8 @@
 #include <string>
 
 #include "dermis/runtime/character.h"
-#include "support/temp_files.h"
 #include "support/characters.h"
+#include "support/temp_files.h"
 
 using namespace dermis;
 

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "dermis/dsurf/dsurf.h"
-#include "support/domains.h"
-#include "support/meshes.h"
+#include "dermis/runtime/character.h"
+#include "support/characters.h"
 
 namespace dermis {
 namespace {
@@ -37,6 +37,31 @@ std::uint64_t Fnv(const std::string& s) {
   std::uint64_t h = 0xcbf29ce484222325ull;
   for (char c : s) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
   return h;
+}
+
+// Deterministic uniform numbers in [0, 1).
+class Lcg {
+ public:
+  explicit Lcg(std::uint64_t seed) : state_(seed * 2862933555777941757ULL + 3037000493ULL) {}
+  double Next() {
+    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state_ >> 11) * (1.0 / 9007199254740992.0);
+  }
+  double Uniform(double lo, double hi) { return lo + (hi - lo) * Next(); }
+
+ private:
+  std::uint64_t state_;
+};
+
+// A domain and its control positions: the test character's first fitted capsule.
+struct TestSurface {
+  const ManifoldDomain& domain;
+  const std::vector<Vec3>& positions;
+};
+
+TestSurface FittedDomain() {
+  const CharacterPart& part = test::FittedCylinders().parts[0];
+  return {*part.surface.domain, part.surface.rest_positions};
 }
 
 // Recomputes the checksum of a file whose body was edited.
@@ -70,12 +95,12 @@ double DenseLattice(const float* lattice, int level, double half, Vec2 z) {
 
 TEST_CASE("dsurf: a version-1 file of merged lattices still loads and writes back identically",
           "[dsurf]") {
-  const ControlSurface cs = test::Build(test::Builtin("cube"));
-  const DomainData& d = cs.domain->data();
+  const TestSurface cs = FittedDomain();
+  const DomainData& d = cs.domain.data();
   const MeshTopology& topo = d.topology;
   const auto nv = static_cast<std::uint32_t>(topo.num_vertices());
   // Two merged levels per chart (16 + 25 coefficients), chart 3 without levels.
-  test::Lcg rng(4);
+  Lcg rng(4);
   std::vector<std::vector<float>> lattices(nv);
   for (std::uint32_t v = 0; v < nv; ++v) {
     if (v == 3) continue;
@@ -91,7 +116,7 @@ TEST_CASE("dsurf: a version-1 file of merged lattices still loads and writes bac
   b.F64(d.options.blend_lb);
   b.Put(nv, 4);
   b.Put(static_cast<std::uint64_t>(topo.num_faces()), 4);
-  for (const Vec3& p : cs.control.positions) b.F64(p.x), b.F64(p.y), b.F64(p.z);
+  for (const Vec3& p : cs.positions) b.F64(p.x), b.F64(p.y), b.F64(p.z);
   for (Index f = 0; f < topo.num_faces(); ++f) {
     for (int k = 0; k < 4; ++k) b.Put(static_cast<std::uint32_t>(topo.face_vertex(f, k)), 4);
   }
@@ -140,9 +165,9 @@ TEST_CASE("dsurf: a version-1 file of merged lattices still loads and writes bac
 }
 
 TEST_CASE("dsurf: version 3 stores sparse levels and round trips bit-exactly", "[dsurf]") {
-  const ControlSurface cs = test::Build(test::Builtin("cube"));
-  const Index nv = cs.domain->num_vertices();
-  test::Lcg rng(8);
+  const TestSurface cs = FittedDomain();
+  const Index nv = cs.domain.num_vertices();
+  Lcg rng(8);
   BsplineDisplacementData d;
   d.form = BsplineLevelForm::kAdditive;
   d.offsets.push_back(0);
@@ -167,7 +192,7 @@ TEST_CASE("dsurf: version 3 stores sparse levels and round trips bit-exactly", "
   INFO(st.message());
   REQUIRE(disp);
   const std::string bytes =
-      SerializeDsurf(*cs.domain, cs.control.positions.data(), disp.get(), 12345);
+      SerializeDsurf(cs.domain, cs.positions.data(), disp.get(), 12345);
   std::uint32_t version = 0;
   std::memcpy(&version, bytes.data() + 8, 4);
   CHECK(version == 3);
@@ -214,8 +239,8 @@ TEST_CASE("dsurf: versions are dispatched by kind", "[dsurf]") {
   CHECK(IsSurfaceDsurfVersion(3));
   CHECK_FALSE(IsSurfaceDsurfVersion(2));  // a character
   CHECK_FALSE(IsSurfaceDsurfVersion(4));
-  const ControlSurface cs = test::Build(test::Builtin("cube"));
-  std::string bytes = SerializeDsurf(*cs.domain, cs.control.positions.data(), nullptr);
+  const TestSurface cs = FittedDomain();
+  std::string bytes = SerializeDsurf(cs.domain, cs.positions.data(), nullptr);
   bytes[8] = 9;  // version 9
   Reseal(&bytes);
   DisplacedSurface s;

@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Evaluation of multilevel cubic B-spline displacements (Lee, Wolberg and Shin 1997, as used by
-// Yoon section 4-5; docs/notes/fit.md section 1: basis, lattice indexing, per-level storage), in the
-// merged dense form of .dsurf version 1 and the additive sparse form of version 3
+// Yoon section 4-5; docs/notes/fit.md section 1: basis, lattice indexing, per-level storage), in
+// the merged dense form of .dsurf version 1 and the additive sparse form of version 3
 // (docs/fitting.md, "Adaptive displacement levels").
 #include "dermis/surface/bspline_displacement.h"
 

@@ -32,7 +32,7 @@ struct CharacterFitOptions {
     f.displacement.method = DisplacementMethod::kAdaptive;
     f.displacement.adaptive.min_node_weight = 0.15;
     f.displacement.adaptive.consistency = 0.1;
-    f.displacement.adaptive.smoothing = 1e-4;
+    f.displacement.adaptive.smoothing = 1e-3;
     f.displacement.adaptive.validation = 0.0;
     f.displacement.adaptive.residual_threshold = 1.0;
     f.displacement.adaptive.min_improvement = 0.01;

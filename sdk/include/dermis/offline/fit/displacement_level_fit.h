@@ -14,8 +14,8 @@ namespace dermis {
 
 /// One fitted point as the displacement fit sees it. At the point's fitted parameter the
 /// surface is D = Q + sum_j psi_j d_j(z_j) N_j (paper Eq. 3-4) and the point is
-/// p = Q + delta sum_j psi_j N_j (docs/notes/fit.md section 4b), so D - p = sum_j a_j (d_j(z_j) - delta) with
-/// a_j = psi_j N_j: linear in the displacement coefficients.
+/// p = Q + delta sum_j psi_j N_j (docs/notes/fit.md section 4b), so D - p = sum_j a_j (d_j(z_j) -
+/// delta) with a_j = psi_j N_j: linear in the displacement coefficients.
 struct DisplacementTarget {
   int count = 0;                  ///< Charts with a positive weight at the point (1..4).
   Index chart[4] = {0, 0, 0, 0};  ///< Their vertices.
