@@ -15,7 +15,9 @@
 //                             [--control-method remesh|simplify]
 //                             [--density D] [--control-fit ITERATIONS] [--finest-passes P]
 //                             [--smoothing S] [--samples S] [--max-turn T] [--repeat R]
-//                             [--detail]
+//                             [--detail] [--mba]
+// --density, --finest-passes and --smoothing set the paper's per-chart MBA (--mba); the default
+// displacement fit is the adaptive one (docs/fitting.md, "Adaptive displacement levels").
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -167,7 +169,7 @@ struct Settings {
   std::string bunny = "../shared/data/scans/stanford-bunny.obj";
   std::string rows = "bunny,torus,characters";
   int control_vertices = 540, torus_vertices = 200, repeat = 3;
-  bool detail = false;
+  bool detail = false, mba = false;
   ControlMeshMethod method = ControlMeshMethod::kRemesh;
   double density = -1.0;    // -1: FitOptions' default
   int control_fit = -1;     // -1: FitOptions' default
@@ -184,6 +186,7 @@ void ApplySettings(const Settings& st, FitOptions* options) {
   if (st.control_fit >= 0) options->control_fit_iterations = st.control_fit;
   if (st.finest_passes >= 1) options->displacement.finest_passes = st.finest_passes;
   if (st.smoothing >= 0.0) options->displacement.smoothing = st.smoothing;
+  if (st.mba) options->displacement.method = DisplacementMethod::kMba;
 }
 
 void PrintControlMesh(const char* name, const FitReport& r) {
@@ -245,7 +248,7 @@ int RunBunny(const Settings& st) {
   std::sort(totals.begin(), totals.end());
   std::sort(control.begin(), control.end());
   bytes_default = SerializeDsurf(*fitted.surface.domain, fitted.surface.control.positions.data(),
-                                 fitted.displacement.get());
+                                 fitted.displacement.get(), report.points);
   // Independent check: fitted (not held-out) points against the level-16 tessellation.
   std::vector<Vec3> fit_points;
   for (std::size_t i = 0; i < input.points.size(); ++i) {
@@ -265,7 +268,7 @@ int RunBunny(const Settings& st) {
     FitReport rr;
     if (!FitSurface(input, o, &f, &rr).ok()) return 1;
     identical = identical && SerializeDsurf(*f.surface.domain, f.surface.control.positions.data(),
-                                            f.displacement.get()) == bytes_default;
+                                            f.displacement.get(), rr.points) == bytes_default;
   }
   const FitErrors& e = report.error;
   std::printf("Yoon 2006 Table 1, bunny row, vs dermis (%s, %d threads, median of %d runs)\n",
@@ -292,9 +295,16 @@ int RunBunny(const Settings& st) {
               e.holdout_max, e.holdout_mean / e.mean);
   std::printf("| Hausdorff (E3) | - | %.3g (%.3f%% of diagonal) |\n", e.hausdorff,
               e.hausdorff_percent_diagonal);
-  std::printf("| coefficients (all levels / finest) | - | %lld / %lld, %d levels |\n",
-              static_cast<long long>(report.coefficients),
-              static_cast<long long>(report.finest_coefficients), report.max_levels);
+  std::printf("| E1 closest-point mean (fitted points) | - | %.3g |\n", e.closest_mean);
+  std::printf("| coefficients | - | %lld (%.2f per data point), %d levels |\n",
+              static_cast<long long>(report.coefficients), report.coefficients_per_point,
+              report.max_levels);
+  std::printf("| coefficients per level | - |");
+  for (std::size_t k = 0; k < report.level_coefficients.size(); ++k) {
+    std::printf("%s%lld", k == 0 ? " " : ", ",
+                static_cast<long long>(report.level_coefficients[k]));
+  }
+  std::printf(" |\n");
   std::printf("| metrics (s, not in total) | - | %.3f |\n", report.seconds.metrics);
   std::printf(
       "independent check: %zu fitted points vs level-16 tessellation (%zu triangles): "
@@ -304,6 +314,19 @@ int RunBunny(const Settings& st) {
       sum / static_cast<double>(n) <= e.mean ? "within" : "ABOVE", mx);
   std::printf("threads 1 and 2 give identical .dsurf bytes (%zu bytes): %s\n", bytes_default.size(),
               identical ? "yes" : "NO");
+  if (!report.displacement_fit.trial.empty()) {
+    std::printf(
+        "stopping rule (validation split of the fitted points, mean |D - p| in the unit "
+        "above):\n");
+    for (const AdaptiveLevelReport& lr : report.displacement_fit.trial) {
+      std::printf("  level %d: %lld nodes, fitted %.3g, validation %.3g%s\n", lr.level,
+                  static_cast<long long>(lr.nodes), lr.train_mean / report.scale,
+                  lr.validation_mean / report.scale,
+                  lr.level < report.displacement_fit.levels ? "" : "  (not kept)");
+    }
+    std::printf("  %d levels kept, stopped by: %s\n", report.displacement_fit.levels,
+                report.displacement_fit.stopped_by.c_str());
+  }
   PrintControlMesh("bunny", report);
   // The control mesh build alone in CPU seconds (it runs on one thread, so this is its wall
   // time on an idle core; the wall times above grow with the machine's load).
@@ -550,6 +573,8 @@ int main(int argc, char** argv) {
       st.smoothing = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--detail") == 0) {
       st.detail = true;
+    } else if (std::strcmp(argv[i], "--mba") == 0) {
+      st.mba = true;
     } else if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
       st.repeat = std::max(1, std::atoi(argv[++i]));
     } else {

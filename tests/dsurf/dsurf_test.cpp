@@ -48,16 +48,18 @@ TEST_CASE("dsurf: one reader for surfaces and characters") {
   REQUIRE(fitted.parts[0].surface.displacement != nullptr);
   const std::string surface = SurfaceBytes(fitted.parts[0]);
   const std::string character = SerializeCharacter(fitted);
-  CHECK(DsurfFileVersion(surface) == kDsurfVersion);
+  // A fitted part's displacement is sparse levels: version 3 (dsurf_versions_test.cpp reads a
+  // version-1 file).
+  CHECK(DsurfFileVersion(surface) == kSparseDsurfVersion);
   CHECK(DsurfFileVersion(character) == kCharacterDsurfVersion);
   CHECK(DsurfFileVersion("DSURF") == 0);
   CHECK(DsurfFileVersion(std::string("glTF\x02\0\0\0\0\0\0\0", 12)) == 0);
 
-  // A version-1 file reads as a character of one part, with no asset.
+  // A surface file reads as a character of one part, with no asset.
   Character ch;
   std::uint32_t version = 0;
   REQUIRE(ParseCharacter(surface, "s.dsurf", &ch, &version).ok());
-  CHECK(version == kDsurfVersion);
+  CHECK(version == kSparseDsurfVersion);
   REQUIRE(ch.parts.size() == 1);
   CHECK(ch.asset.source == "s.dsurf");
   CHECK(ch.asset.meshes.empty());
@@ -88,13 +90,13 @@ TEST_CASE("dsurf: the container of every version") {
     Character ch;
     DisplacedSurface s;
     // Versions this build does not know: refused before anything else is read.
-    for (const std::uint32_t v : {0u, 3u, 0xffffffffu}) {
+    for (const std::uint32_t v : {0u, 4u, 0xffffffffu}) {
       std::string other = bytes;
       for (int i = 0; i < 4; ++i) other[8 + i] = static_cast<char>((v >> (8 * i)) & 0xff);
       const Status st = ParseCharacter(other, "v.dsurf", &ch);
       CHECK(st.code() == StatusCode::kUnsupported);
       CHECK(st.message() == "v.dsurf: .dsurf version " + std::to_string(v) +
-                                " is not supported (this build reads 1..2)");
+                                " is not supported (this build reads 1..3)");
       CHECK(ParseDsurf(other, "v.dsurf", &s).code() == StatusCode::kUnsupported);
     }
     // Bad magic, a short header, a damaged byte.
@@ -130,7 +132,7 @@ TEST_CASE("dsurf: a file is read once, its bytes handed back") {
   std::string bytes;
   REQUIRE(ReadCharacter(dir.File("part.dsurf"), &ch, &version, &bytes).ok());
   CHECK(bytes == surface);
-  CHECK(version == kDsurfVersion);
+  CHECK(version == kSparseDsurfVersion);
   CHECK(ch.asset.source == dir.File("part.dsurf"));
   DisplacedSurface s;
   REQUIRE(ReadDsurf(dir.File("part.dsurf"), &s).ok());

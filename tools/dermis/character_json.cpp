@@ -20,8 +20,23 @@ Json DescribeSurface(const DisplacedSurface& surface) {
   if (surface.displacement) {
     const BsplineDisplacementData& data = surface.displacement->data();
     Json d;
+    d["storage"] = data.form == BsplineLevelForm::kAdditive ? "sparse levels" : "merged lattices";
     d["max_levels"] = surface.displacement->max_levels();
     d["coefficients"] = surface.displacement->num_coefficients();
+    // Stored coefficients per level over all charts (merged lattices: each level's lattice).
+    std::vector<std::int64_t> per_level;
+    for (int k = 0; k < surface.displacement->max_levels(); ++k) {
+      per_level.push_back(surface.displacement->level_coefficients(k));
+    }
+    d["level_coefficients"] = per_level;
+    if (surface.data_points > 0) {
+      d["data_points"] = surface.data_points;
+      d["coefficients_per_point"] = static_cast<double>(surface.displacement->num_coefficients()) /
+                                    static_cast<double>(surface.data_points);
+    } else {
+      d["data_points"] = nullptr;
+      d["coefficients_per_point"] = nullptr;
+    }
     std::vector<std::int64_t> charts_by_levels(
         static_cast<std::size_t>(surface.displacement->max_levels()) + 1, 0);
     for (const std::uint8_t levels : data.num_levels)
@@ -71,6 +86,13 @@ Json DescribeCharacter(const Character& ch) {
     fit["e1_max_percent"] = 100.0 * f.e1_max;
     fit["hausdorff_percent"] = 100.0 * f.hausdorff;
     fit["coefficients"] = f.coefficients;
+    // Per data point fitted (the welded vertices and the samples inside large triangles, as the
+    // part's surface records them; older files: per welded vertex).
+    const std::int64_t fitted = part.surface.data_points > 0 ? part.surface.data_points : f.points;
+    fit["data_points"] = fitted;
+    fit["coefficients_per_point"] =
+        fitted > 0 ? Json(static_cast<double>(f.coefficients) / static_cast<double>(fitted))
+                   : Json();
     fit["levels"] = f.levels;
     p["fit"] = fit;
     parts.push_back(p);

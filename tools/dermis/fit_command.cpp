@@ -36,6 +36,14 @@ struct FitArgs {
   int finest_passes = DisplacementFitOptions{}.finest_passes;
   double smoothing = -1.0;
   int control_fit = -1;  // -1: the library's default for the input kind
+  std::string method;    // empty: the library's default for the input kind
+  double node_weight = -1.0;
+  double level_smoothing = -1.0;
+  double validation = -1.0;
+  double min_improvement = -1.0;
+  double residual = -1.0;
+  double budget = -1.0;
+  double consistency = -1.0;
   double holdout = 0.1;
   int threads = 0;
   bool quiet = false;
@@ -74,6 +82,23 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
   return m;
 }
 
+// The displacement options the command line sets (the others keep `o`'s values).
+void ApplyDisplacementArgs(const FitArgs& a, DisplacementFitOptions* o) {
+  o->max_levels = a.levels;
+  if (a.method == "mba") o->method = DisplacementMethod::kMba;
+  if (a.method == "adaptive") o->method = DisplacementMethod::kAdaptive;
+  if (a.density >= 0.0) o->density = a.density;
+  o->finest_passes = a.finest_passes;
+  if (a.smoothing >= 0.0) o->smoothing = a.smoothing;
+  if (a.node_weight > 0.0) o->adaptive.min_node_weight = a.node_weight;
+  if (a.level_smoothing >= 0.0) o->adaptive.smoothing = a.level_smoothing;
+  if (a.validation >= 0.0) o->adaptive.validation = a.validation;
+  if (a.min_improvement >= 0.0) o->adaptive.min_improvement = a.min_improvement;
+  if (a.residual >= 0.0) o->adaptive.residual_threshold = a.residual;
+  if (a.budget >= 0.0) o->adaptive.max_coefficients_per_point = a.budget;
+  if (a.consistency >= 0.0) o->adaptive.consistency = a.consistency;
+}
+
 nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   nlohmann::ordered_json j;
   j["schema"] = "dermis.fit/1";
@@ -90,7 +115,26 @@ nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   j["control_fit_rounds"] = r.control_fit_rounds;
   j["control_mesh"] = ControlMeshJson(r.control_mesh);
   j["coefficients"] = r.coefficients;
+  j["coefficients_per_point"] = r.coefficients_per_point;
   j["finest_coefficients"] = r.finest_coefficients;
+  j["level_coefficients"] = r.level_coefficients;
+  if (!r.displacement_fit.trial.empty()) {
+    // The adaptive fit's stopping rule: its trial levels (errors in the unit above).
+    nlohmann::ordered_json trial = nlohmann::ordered_json::array();
+    for (const AdaptiveLevelReport& l : r.displacement_fit.trial) {
+      nlohmann::ordered_json t;
+      t["level"] = l.level;
+      t["nodes"] = l.nodes;
+      t["fitted_mean"] = l.train_mean / r.scale;
+      t["validation_mean"] = l.validation_mean / r.scale;
+      t["kept"] = l.level < r.displacement_fit.levels;
+      trial.push_back(t);
+    }
+    j["displacement_levels"] = trial;
+  }
+  if (!r.displacement_fit.stopped_by.empty()) {
+    j["displacement_stopped_by"] = r.displacement_fit.stopped_by;
+  }
   j["levels"] = r.max_levels;
   j["threads"] = r.threads;
   j["unit"] = "data scaled so its bounding box's largest side is 1";
@@ -176,10 +220,7 @@ int RunFitCharacter(const FitArgs& a) {
   }
   CharacterFitOptions options;
   options.vertex_ratio = a.control_ratio;
-  options.fit.displacement.max_levels = a.levels;
-  if (a.density >= 0.0) options.fit.displacement.density = a.density;
-  options.fit.displacement.finest_passes = a.finest_passes;
-  if (a.smoothing >= 0.0) options.fit.displacement.smoothing = a.smoothing;
+  ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.threads = a.threads;
   const ProgressLine progress("dermis fit", a.quiet);
@@ -246,10 +287,7 @@ int RunFit(const FitArgs& a) {
   input.points_dropped = dropped;
   FitOptions options;
   options.control_vertices = a.control_vertices;
-  options.displacement.max_levels = a.levels;
-  if (a.density >= 0.0) options.displacement.density = a.density;
-  options.displacement.finest_passes = a.finest_passes;
-  if (a.smoothing >= 0.0) options.displacement.smoothing = a.smoothing;
+  ApplyDisplacementArgs(a, &options.displacement);
   if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
   options.holdout = a.holdout;
   options.threads = a.threads;
@@ -260,8 +298,9 @@ int RunFit(const FitArgs& a) {
   s = FitSurface(input, options, &fitted, &report);
   progress.Clear();
   if (!s.ok()) return Fail(kCommand, s);
-  const std::string bytes = SerializeDsurf(
-      *fitted.surface.domain, fitted.surface.control.positions.data(), fitted.displacement.get());
+  const std::string bytes =
+      SerializeDsurf(*fitted.surface.domain, fitted.surface.control.positions.data(),
+                     fitted.displacement.get(), report.points);
   MakeParentFolder(a.output);
   s = WriteFileAtomically(a.output, bytes);
   if (!s.ok()) return Fail(kCommand, s);
@@ -277,7 +316,7 @@ int RunFit(const FitArgs& a) {
   if (!a.quiet) {
     std::fprintf(stderr,
                  "dermis fit: %s: %lld points (%lld dropped, %lld held out), %lld control "
-                 "vertices, %lld coefficients\n"
+                 "vertices, %lld coefficients (%.2f per point)\n"
                  "  E1 mean %.3g rms %.3g max %.3g (unoptimized %.3g), held-out mean %.3g, "
                  "Hausdorff %.3g%% of diagonal\n"
                  "  %.2f s (control mesh %.2f, projection+optimisation %.2f, displacement %.2f)"
@@ -286,8 +325,9 @@ int RunFit(const FitArgs& a) {
                  static_cast<long long>(report.points_dropped),
                  static_cast<long long>(report.points_holdout),
                  static_cast<long long>(report.control_vertices),
-                 static_cast<long long>(report.coefficients), report.error.mean, report.error.rms,
-                 report.error.max, report.error.unoptimized_mean, report.error.holdout_mean,
+                 static_cast<long long>(report.coefficients), report.coefficients_per_point,
+                 report.error.mean, report.error.rms, report.error.max,
+                 report.error.unoptimized_mean, report.error.holdout_mean,
                  report.error.hausdorff_percent_diagonal, report.seconds.total,
                  report.seconds.control_mesh, report.seconds.projection_optimization,
                  report.seconds.displacement, a.output.c_str());
@@ -315,17 +355,52 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--levels", args->levels, "Most displacement levels per chart")
       ->check(CLI::Range(1, kMaxBsplineLevels))
       ->capture_default_str();
+  cmd->add_option("--displacement", args->method,
+                  "How displacements are fitted: adaptive (levels refined where the data "
+                  "support them, as many as a validation split finds useful; the default) or "
+                  "mba (dense per-chart lattices, the paper's method)")
+      ->check(CLI::IsMember({"adaptive", "mba"}));
+  cmd->add_option("--node-weight", args->node_weight,
+                  "adaptive: points a lattice node needs under its support (density criterion; "
+                  "default 0.25)")
+      ->check(CLI::Range(1e-3, 1e3));
+  cmd->add_option("--level-smoothing", args->level_smoothing,
+                  "adaptive: thin-plate weight of every level (default 1e-3 for a surface, 1e-4 "
+                  "for a character)")
+      ->check(CLI::Range(0.0, 1e6));
+  cmd->add_option("--validation", args->validation,
+                  "adaptive: fraction of the points that decides how many levels to keep (default "
+                  "0.1 for a surface; 0, as for a character: levels stop when they improve the "
+                  "fitted points by less than --min-improvement)")
+      ->check(CLI::Range(0.0, 0.9));
+  cmd->add_option("--min-improvement", args->min_improvement,
+                  "adaptive: a level is kept if it lowers the validation error by this fraction "
+                  "(default 0.01)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--residual-threshold", args->residual,
+                  "adaptive: a node of a finer level needs a residual above this multiple of "
+                  "the mean error (residual criterion; 0: off; default 0.5 for a surface, 1.2 for "
+                  "a character)")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--coefficients-per-point", args->budget,
+                  "adaptive: at most this many displacement coefficients per fitted point (0: "
+                  "no limit; default 3)")
+      ->check(CLI::Range(0.0, 1e4));
+  cmd->add_option("--consistency", args->consistency,
+                  "adaptive: weight of every chart's agreement with the fitted displacement, "
+                  "next to the surface error (default 0.1)")
+      ->check(CLI::Range(0.0, 1e3));
   cmd->add_option("--density", args->density,
-                  "Finest lattice cells per side per sqrt(points in the chart); 0: all charts "
-                  "get --levels (default 1.0 for a surface, 2.2 for a character)")
+                  "mba: finest lattice cells per side per sqrt(points in the chart); 0: all "
+                  "charts get --levels (default 1.0 for a surface, 2.2 for a character)")
       ->check(CLI::Range(0.0, 64.0));
   cmd->add_option("--finest-passes", args->finest_passes,
-                  "BA passes at each chart's finest displacement level")
+                  "mba: BA passes at each chart's finest displacement level")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_option("--smoothing", args->smoothing,
-                  "Thin-plate weight of each chart's finest displacement level (0: plain MBA; "
-                  "default 5e-4 for a surface, 0 for a character)")
+                  "mba: thin-plate weight of each chart's finest displacement level (0: plain "
+                  "MBA; default 5e-4 for a surface, 0 for a character)")
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--control-fit", args->control_fit,
                   "Rounds of fitting the built control mesh's vertices to the data (0: keep "

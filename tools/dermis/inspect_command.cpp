@@ -223,7 +223,7 @@ Status InspectDsurfBytes(std::string_view bytes, const std::string& name, bool w
   std::uint32_t version = 0;
   const Status s = ParseCharacter(bytes, name, &ch, &version);
   if (!s.ok()) return s;
-  if (version == kDsurfVersion) {
+  if (IsSurfaceDsurfVersion(version)) {
     (*report)["surface"] = DescribeSurface(ch.parts[0].surface);
     return Status::Ok();
   }
@@ -361,8 +361,18 @@ void PrintSurface(const Json& s) {
   const Json& h = d["charts_by_levels"];
   for (std::size_t k = 0; k < h.size(); ++k)
     by_levels += (k == 0 ? "" : ", ") + std::to_string(k) + ": " + Str(h[k]);
-  Row("displacement", Str(d["max_levels"]) + " levels, " + Str(d["coefficients"]) +
-                          " coefficients (charts by levels: " + by_levels + ")");
+  std::string per_level;
+  const Json& lc = d["level_coefficients"];
+  for (std::size_t k = 0; k < lc.size(); ++k)
+    per_level += (k == 0 ? "" : ", ") + std::to_string(k) + ": " + Str(lc[k]);
+  Row("displacement", Str(d["max_levels"]) + " levels, " + Str(d["storage"]) +
+                          " (charts by levels: " + by_levels + ")");
+  Row("coefficients", Str(d["coefficients"]) +
+                          (d["data_points"].is_null()
+                               ? std::string()
+                               : ", " + Str(d["coefficients_per_point"]) + " per data point (" +
+                                     Str(d["data_points"]) + " points)") +
+                          "; per level: " + per_level);
 }
 
 void PrintCharacter(const Json& c) {
@@ -377,9 +387,9 @@ void PrintCharacter(const Json& c) {
     rows.push_back(
         {"mesh " + Str(p["mesh"]) + " component " + Str(p["component"]),
          Str(s["control_vertices"]) + " control vertices", Str(s["faces"]) + " faces",
-         d.is_null()
-             ? std::string("no displacement")
-             : Str(d["max_levels"]) + " levels, " + Str(d["coefficients"]) + " coefficients",
+         d.is_null() ? std::string("no displacement")
+                     : Str(d["max_levels"]) + " levels, " + Str(d["coefficients"]) +
+                           " coefficients (" + Str(f["coefficients_per_point"]) + " per point)",
          "E1 mean " + Str(f["e1_mean"]) + " (" + Str(f["e1_mean_percent"]) + " %), max " +
              Str(f["e1_max"]) + " (" + Str(f["e1_max_percent"]) + " %)",
          "Hausdorff " + Str(f["hausdorff"]) + " (" + Str(f["hausdorff_percent"]) + " %)"});

@@ -79,7 +79,7 @@ float ErrorRange(const std::vector<render::Mesh>& meshes) {
   return all[k] > 0.0f ? all[k] : 1.0f;
 }
 
-// A version-1 surface tessellated at `level` with `displacement_levels` (-1: all).
+// A surface (version 1 or 3) tessellated at `level` with `displacement_levels` (-1: all).
 Status SurfaceMesh(const RenderArgs& a, const DisplacedSurface& surface, int displacement_levels,
                    std::vector<render::Mesh>* out) {
   std::vector<LocalPatch> patches(surface.rest_positions.size());
@@ -223,7 +223,7 @@ Status ErrorMaps(const RenderArgs& a, std::vector<std::vector<render::Mesh>>* su
   return Status::Ok();
 }
 
-// A version-1 surface (no pose): one view per displacement level of --series, or per turntable
+// A surface (version 1 or 3; no pose): one view per displacement level of --series, or per turntable
 // angle. Returns an exit status.
 int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::View* view_out,
                   std::vector<render::Image>* images) {
@@ -421,8 +421,9 @@ int RunRender(const RenderArgs& a) {
   view.elevation = a.elevation;
   view.caption = a.caption;
   std::vector<render::Image> images;
-  const int rc = version == kDsurfVersion ? RenderSurface(a, ch.parts[0].surface, &view, &images)
-                                          : RenderCharacter(a, ch, &view, &images);
+  const int rc = IsSurfaceDsurfVersion(version)
+                     ? RenderSurface(a, ch.parts[0].surface, &view, &images)
+                     : RenderCharacter(a, ch, &view, &images);
   if (rc != kExitOk) return rc;
 
   MakeParentFolder(a.output);

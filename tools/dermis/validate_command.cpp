@@ -119,10 +119,10 @@ int RunValidate(const ValidateArgs& a) {
   Khronos khronos;
   if (s.ok()) {
     if (const std::uint32_t version = DsurfFileVersion(bytes); version != 0) {
-      kind = version == kDsurfVersion ? "dsurf surface" : "dsurf character";
+      kind = IsSurfaceDsurfVersion(version) ? "dsurf surface" : "dsurf character";
       Character ch;
       s = ParseCharacter(bytes, a.input, &ch);
-      if (s.ok() && version != kDsurfVersion) s = ValidateAsset(ch.asset);
+      if (s.ok() && !IsSurfaceDsurfVersion(version)) s = ValidateAsset(ch.asset);
     } else {
       const Importer* importer = Importers().Find(a.input, ImportKind::kAsset);
       kind = importer != nullptr && importer->name() == "gltf" ? "gltf" : "other";

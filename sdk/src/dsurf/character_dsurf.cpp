@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Character files: the body of version-2 .dsurf files (docs/file-format.md, "Character
 // files"); the container is dsurf_container.cpp's. Each part's surface is a complete
-// version-1 .dsurf inside, so the surface reader is shared.
+// version-1 or version-3 .dsurf inside, so the surface reader is shared.
 #include <cmath>
 #include <limits>
 
@@ -53,7 +53,7 @@ std::string SerializeCharacter(const Character& ch) {
     w.I32(p.component);
     w.I32(p.skin);
     w.Str(SerializeDsurf(*p.surface.domain, p.surface.rest_positions.data(),
-                         p.surface.displacement.get()));
+                         p.surface.displacement.get(), p.surface.data_points));
     w.U64(p.control_joints.size());
     for (std::size_t i = 0; i < p.control_joints.size(); ++i) {
       for (int k = 0; k < 4; ++k) w.U32(p.control_joints[i][k]);

@@ -32,10 +32,10 @@ Status Open(std::string_view bytes, const std::string& name, Contents* out) {
     return Status::InvalidInput(name + ": truncated .dsurf header");
   }
   const std::uint32_t version = DsurfFileVersion(bytes);
-  if (version == 0 || version > kCharacterDsurfVersion) {
+  if (version == 0 || version > kLatestDsurfVersion) {
     return Status::Unsupported(name + ": .dsurf version " + std::to_string(version) +
                                " is not supported (this build reads 1.." +
-                               std::to_string(kCharacterDsurfVersion) + ")");
+                               std::to_string(kLatestDsurfVersion) + ")");
   }
   const std::string_view body = bytes.substr(0, bytes.size() - 8);
   ByteReader tail(bytes.substr(bytes.size() - 8), name);

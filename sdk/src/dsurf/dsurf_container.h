@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The .dsurf container shared by every version (docs/file-format.md): the magic, the version
 // and flags words, the FNV-1a 64 checksum at the end. Internal to the dsurf module: the body
-// of each version is written and read by its own file (dsurf.cpp: version 1, a surface;
+// of each version is written and read by its own file (dsurf.cpp: versions 1 and 3, a surface;
 // character_dsurf.cpp: version 2, a character), and dsurf_read.cpp dispatches on the version.
 #pragma once
 
@@ -31,9 +31,9 @@ struct Contents {
   std::string_view bytes;
 };
 
-/// Checks the magic, the header's size, the version (1 .. kCharacterDsurfVersion) and the
+/// Checks the magic, the header's size, the version (1 .. kLatestDsurfVersion) and the
 /// checksum. Errors name `name`: "not a .dsurf file (bad magic bytes)", "truncated .dsurf
-/// header", ".dsurf version N is not supported (this build reads 1..2)" (kUnsupported) or
+/// header", ".dsurf version N is not supported (this build reads 1..3)" (kUnsupported) or
 /// "checksum mismatch (the file is corrupt or truncated)".
 Status Open(std::string_view bytes, const std::string& name, Contents* out);
 
@@ -44,8 +44,8 @@ ByteReader BodyReader(const Contents& contents, const std::string& name);
 /// bytes before the checksum".
 Status CheckEnd(const ByteReader& r);
 
-/// The body of a version-1 file (a surface), read by `r`.
-Status ReadSurfaceBody(ByteReader* r, DisplacedSurface* out);
+/// The body of a version-1 or version-3 file (a surface), read by `r`.
+Status ReadSurfaceBody(ByteReader* r, std::uint32_t version, DisplacedSurface* out);
 
 /// The body of a version-2 file (a character), read by `r`.
 Status ReadCharacterBody(ByteReader* r, Character* out);

@@ -1,7 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The one reader of .dsurf files of every version (docs/file-format.md): the container is
-// checked once, then the version picks the body. A version-1 surface reads as a character of
-// one part with no asset meshes.
+// checked once, then the version picks the body. A surface (version 1 or 3) reads as a
+// character of one part with no asset meshes.
 #include "core/byte_stream.h"
 #include "dermis/core/file_io.h"
 #include "dermis/dsurf/dsurf.h"
@@ -17,9 +17,9 @@ Status ParseCharacter(std::string_view bytes, const std::string& name, Character
   if (!s.ok()) return s;
   ByteReader r = dsurf::BodyReader(file, name);
   Character ch;
-  if (file.version == kDsurfVersion) {
+  if (IsSurfaceDsurfVersion(file.version)) {
     CharacterPart part;
-    s = dsurf::ReadSurfaceBody(&r, &part.surface);
+    s = dsurf::ReadSurfaceBody(&r, file.version, &part.surface);
     if (!s.ok()) return s;
     ch.asset.source = name;
     ch.parts.push_back(std::move(part));

@@ -128,8 +128,9 @@ TEST_CASE("character: lod export tessellates parts with transferred weights and 
       const glm::vec4 w = p.weights[0][v];
       CHECK(w.x + w.y + w.z + w.w == Approx(1.0f).margin(1e-5));
       // Points are within the fit's Hausdorff distance of the data, whose chords lie up to
-      // 0.5 (1 - cos 7.5 deg) = 0.0043 inside the analytic capsule (0.0096 at the caps).
-      CHECK(CapsuleDistance(p.positions[v], k == 1 ? 0.0f : 3.0f) < hausdorff + 0.0097);
+      // 0.5 (1 - cos 7.5 deg) = 0.0043 inside the analytic capsule (0.0096 at the caps); the
+      // exported positions are f32 (the Hausdorff distance was measured in f64).
+      CHECK(CapsuleDistance(p.positions[v], k == 1 ? 0.0f : 3.0f) < hausdorff + 0.0097 + 1e-5);
       if (p.positions[v].y > 0.05f && p.positions[v].y < 1.95f) {
         // Side UV v = ring / 17 = y * 16 / 34 (rings span [0, 16/17]).
         CHECK(p.texcoords[0][v].y == Approx(p.positions[v].y * 8.0f / 17.0f).margin(0.02));

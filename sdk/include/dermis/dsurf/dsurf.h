@@ -1,10 +1,11 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
-/// \brief The native `.dsurf` file (docs/file-format.md): version 1 holds a fitted displaced
-/// surface (control mesh, chart settings, patch-fit operators and multilevel displacement
-/// lattices), version 2 a character (the source asset and one version-1 surface per fitted
-/// part, with skin weights and vertex bindings; runtime/character.h). One magic, one
-/// checksum, and one reader for every version: ParseCharacter() / ReadCharacter().
+/// \brief The native `.dsurf` file (docs/file-format.md): versions 1 and 3 hold a fitted
+/// displaced surface (control mesh, chart settings, patch-fit operators and multilevel
+/// displacement lattices: merged dense lattices in version 1, sparse per-level corrections in
+/// version 3), version 2 a character (the source asset and one surface per fitted part, with
+/// skin weights and vertex bindings; runtime/character.h). One magic, one checksum, and one
+/// reader for every version: ParseCharacter() / ReadCharacter().
 ///
 /// Runtime code: reading needs neither Eigen nor any plugin, and never throws.
 #pragma once
@@ -21,10 +22,21 @@
 
 namespace dermis {
 
-/// Version of .dsurf files that hold one displaced surface.
+/// Version of .dsurf files that hold one displaced surface with merged dense displacement
+/// lattices (BsplineLevelForm::kMerged).
 constexpr std::uint32_t kDsurfVersion = 1;
-/// Version of .dsurf files that hold a character. Readers accept 1 .. kCharacterDsurfVersion.
+/// Version of .dsurf files that hold a character.
 constexpr std::uint32_t kCharacterDsurfVersion = 2;
+/// Version of .dsurf files that hold one displaced surface with sparse per-level displacement
+/// corrections (BsplineLevelForm::kAdditive).
+constexpr std::uint32_t kSparseDsurfVersion = 3;
+/// The newest version; readers accept 1 .. kLatestDsurfVersion.
+constexpr std::uint32_t kLatestDsurfVersion = 3;
+
+/// Whether a .dsurf version holds a plain surface (1, 3) rather than a character (2).
+constexpr bool IsSurfaceDsurfVersion(std::uint32_t version) {
+  return version == kDsurfVersion || version == kSparseDsurfVersion;
+}
 
 struct Character;  // runtime/character.h
 
@@ -33,25 +45,31 @@ struct DisplacedSurface {
   std::unique_ptr<ManifoldDomain> domain;
   std::vector<Vec3> rest_positions;  ///< Control vertices, model units, one per domain vertex.
   std::unique_ptr<BsplineDisplacement> displacement;  ///< Null if the file has none.
+  /// Data points the displacement was fitted to, for coefficients per point (version 3
+  /// stores it; 0: unknown).
+  std::int64_t data_points = 0;
 };
 
-/// Serialises a surface into .dsurf bytes (little-endian, versioned, with a checksum). The same
-/// surface always gives the same bytes.
+/// Serialises a surface into .dsurf bytes (little-endian, versioned, with a checksum): version 3
+/// when the displacement is additive (BsplineLevelForm::kAdditive), else version 1, so a
+/// version-1 file read and written again gives the same bytes. The same surface always gives
+/// the same bytes. `data_points` is stored by version 3 only.
 std::string SerializeDsurf(const ManifoldDomain& domain, const Vec3* rest_positions,
-                           const BsplineDisplacement* displacement);
+                           const BsplineDisplacement* displacement, std::int64_t data_points = 0);
 
-/// Parses the bytes of a version-1 .dsurf (a version-2 file is an error: it is a character).
+/// Parses the bytes of a version-1 or version-3 .dsurf (a version-2 file is an error: it is a
+/// character).
 /// Every count is checked against the bytes present before anything is allocated; errors name
 /// `name` and the part of the file at fault.
 Status ParseDsurf(std::string_view bytes, const std::string& name, DisplacedSurface* out);
 
-/// Reads a version-1 .dsurf file (kIoError naming the path if it cannot be read).
+/// Reads a version-1 or version-3 .dsurf file (kIoError naming the path if it cannot be read).
 Status ReadDsurf(const std::string& path, DisplacedSurface* out);
 
 /// Serialises a character as a version-2 .dsurf (deterministic bytes, FNV-1a checksum).
 std::string SerializeCharacter(const Character& character);
 
-/// The reader of every version: parses .dsurf bytes as a character. A version-1 surface
+/// The reader of every version: parses .dsurf bytes as a character. A surface (version 1 or 3)
 /// becomes a character of one part with no asset meshes, no skins and no bindings (its
 /// asset's source is `name`). `version`, if not null, receives the file's version. Errors name
 /// `name` and the part of the file at fault (kUnsupported for a version this build does not

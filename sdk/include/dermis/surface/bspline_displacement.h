@@ -4,10 +4,18 @@
 /// section 5 "multi-level representations"; docs/notes/fit.md section 1).
 ///
 /// Chart v's function lives on the square [-R_v, R_v]^2 of chart coordinates. Level k (0-based)
-/// has 2^k cells per side and a (2^k + 3)^2 lattice of coefficients. Level k's lattice stores
-/// the *merged* function Psi_k = sum of the fitted levels 0..k (refined to level k), so
-/// evaluating with any number of levels costs 16 reads, and level-of-detail switching is a
-/// choice of lattice (docs/notes/fit.md section 1, storage option (b)).
+/// has 2^k cells per side and a (2^k + 3)^2 lattice of nodes. Two storage forms:
+///
+/// - **merged** (.dsurf version 1): level k's lattice is dense and stores the merged function
+///   Psi_k = sum of the fitted levels 0..k (refined to level k), so evaluating with any number
+///   of levels reads the 16 coefficients of one lattice (docs/notes/fit.md section 1, option (b)).
+/// - **additive** (.dsurf version 3, docs/fitting.md "Adaptive displacement levels"): level k
+///   stores only its own correction Phi_k, and only on the nodes the fit activated (the others
+///   are 0); evaluating with L levels sums Phi_0 .. Phi_{L-1}. A level whose every node is
+///   active is stored densely without a node list.
+///
+/// In both forms evaluating with L levels gives exactly the function of an L-level fit (runtime
+/// level of detail by truncation).
 #pragma once
 
 #include <cstdint>
@@ -19,7 +27,7 @@
 
 namespace dermis {
 
-/// Number of coefficients of one level-k lattice: (2^k + 3)^2.
+/// Number of nodes of one level-k lattice: (2^k + 3)^2.
 constexpr std::int64_t BsplineLatticeSize(int level) {
   return ((std::int64_t{1} << level) + 3) * ((std::int64_t{1} << level) + 3);
 }
@@ -27,21 +35,37 @@ constexpr std::int64_t BsplineLatticeSize(int level) {
 /// Largest number of levels a chart may have (level 12 is a 4099^2 lattice).
 constexpr int kMaxBsplineLevels = 13;
 
+/// How the levels of a BsplineDisplacementData combine (see the file comment).
+enum class BsplineLevelForm : std::uint8_t {
+  kMerged = 0,    ///< Dense merged lattices; L levels read lattice L - 1.
+  kAdditive = 1,  ///< Per-level corrections on active nodes; L levels sum levels 0..L-1.
+};
+
 /// The stored form of a BsplineDisplacement (what a .dsurf file holds).
 struct BsplineDisplacementData {
+  BsplineLevelForm form = BsplineLevelForm::kMerged;
   /// Per chart: half side R of the chart's square domain, > 0, in chart units.
   std::vector<double> half_extent;
   /// Per chart: number of levels, 0..kMaxBsplineLevels. 0 means d = 0 on that chart.
   std::vector<std::uint8_t> num_levels;
-  /// Per chart: index into `values` of its level-0 lattice; the chart's levels follow one
+  /// Per chart: index into `values` of its level-0 coefficients; the chart's levels follow one
   /// another. One entry per chart plus a final one equal to values.size().
   std::vector<std::int64_t> offsets;
-  /// Lattice coefficients (model units). Level k of a chart is row-major: node (i, j),
-  /// i, j = -1 .. 2^k + 1, at (j + 1) * (2^k + 3) + (i + 1); i runs along chart x.
+  /// kAdditive only (empty for kMerged): per level of every chart (chart 0's levels 0..L-1,
+  /// then chart 1's, ...), the number of coefficients stored for it. BsplineLatticeSize(k)
+  /// means dense (every node, in lattice order); fewer means sparse: the level's nodes are
+  /// listed in `nodes`; 0 means the level adds nothing to that chart.
+  std::vector<std::int32_t> level_counts;
+  /// kAdditive only: the node indices of the sparse levels, level after level in the order of
+  /// level_counts, strictly increasing within a level. Node (i, j), i, j = -1 .. 2^k + 1, has
+  /// index (j + 1)(2^k + 3) + (i + 1); i runs along chart x.
+  std::vector<std::uint32_t> nodes;
+  /// Coefficients (model units). A dense level is row-major in node index order; a sparse one
+  /// holds one value per listed node.
   std::vector<float> values;
 };
 
-/// Checks sizes, offsets and finiteness of `data` for `num_charts` charts.
+/// Checks sizes, offsets, node lists and finiteness of `data` for `num_charts` charts.
 Status ValidateBsplineDisplacementData(const BsplineDisplacementData& data,
                                        std::int64_t num_charts);
 
@@ -65,11 +89,24 @@ class BsplineDisplacement final : public Displacement {
   int max_levels() const { return max_levels_; }
   /// Total number of stored coefficients.
   std::int64_t num_coefficients() const { return static_cast<std::int64_t>(data_.values.size()); }
+  /// Stored coefficients of level `level` over all charts (0 beyond the deepest chart).
+  std::int64_t level_coefficients(int level) const;
 
  private:
   BsplineDisplacement() = default;
+  // Adds the value and chart-space gradient of one lattice at z to *f, *fx, *fy.
+  void AddLevel(std::size_t level_index, int level, double half_extent, Vec2 z, double* f,
+                double* fx, double* fy) const;
+
   BsplineDisplacementData data_;
   int max_levels_ = 0;
+  // Derived index (kAdditive): per chart, its first entry in the per-level arrays; per level,
+  // its first value, its first node (-1: dense) and its first row in row_start_ (the sparse
+  // level's nodes of lattice row r are nodes[node_begin + row_start_[row + r] ..
+  // node_begin + row_start_[row + r + 1])).
+  std::vector<std::int64_t> chart_level_;
+  std::vector<std::int64_t> level_value_, level_node_, level_row_;
+  std::vector<std::int32_t> row_start_;
 };
 
 /// A view of a BsplineDisplacement truncated to its first `levels` levels (runtime level of

@@ -406,6 +406,8 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
       part.surface.domain = std::move(fitted.surface.domain);
       part.surface.rest_positions = fitted.surface.control.positions;
       part.surface.displacement = std::move(fitted.displacement);
+      // The points fitted: the welded vertices and the samples inside large triangles.
+      part.surface.data_points = fr.points;
       const DisplacedSurface& surf = part.surface;
       const std::vector<LocalPatch>& patches = fitted.surface.patches;
       std::vector<VertexBinding> param = VertexParameters(surf, patches, fitted.point_fits, dense);

@@ -9,6 +9,7 @@
 
 #include "dermis/core/parallel.h"
 #include "dermis/offline/fit/mba_fit.h"
+#include "dermis/surface/blend.h"
 
 namespace dermis {
 
@@ -25,6 +26,40 @@ int ChooseLevels(std::size_t samples, const DisplacementFitOptions& options) {
   const double cells = options.density * std::sqrt(static_cast<double>(samples));
   const int level = static_cast<int>(std::ceil(std::log2(std::max(cells, 1.0))));
   return std::clamp(level + 1, 1, max_levels);
+}
+
+void MakeDisplacementTargets(const ManifoldDomain& domain, const LocalPatch* patches,
+                             const std::vector<PointFit>& fits,
+                             std::vector<DisplacementTarget>* targets,
+                             std::vector<std::size_t>* index) {
+  targets->clear();
+  if (index) index->clear();
+  const MeshTopology& topo = domain.topology();
+  const double lb = domain.options().blend_lb;
+  const double ub = 1.0 - lb;
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    const PointFit& f = fits[i];
+    if (f.status != PointFitStatus::kOptimized) continue;
+    DisplacementTarget t;
+    t.delta = f.delta;
+    for (int a = 0; a < 4; ++a) {
+      const Vec2 cd = FaceToCorner(a, f.uv);
+      if (cd.x >= ub || cd.y >= ub) continue;
+      const double psi = CornerWeight(domain.options().blend_type, lb, cd);
+      if (!(psi > 0.0)) continue;
+      const Index v = topo.face_vertex(f.face, a);
+      const Vec2 z = domain.FaceToChart(f.face, a, f.uv);
+      PatchFrame frame;
+      EvaluatePatchFrame(patches[v], z, &frame);
+      t.chart[t.count] = v;
+      t.z[t.count] = z;
+      t.a[t.count] = psi * frame.n;
+      ++t.count;
+    }
+    if (t.count == 0) continue;
+    targets->push_back(t);
+    if (index) index->push_back(i);
+  }
 }
 
 BsplineDisplacementData FitDisplacements(const ManifoldDomain& domain,

@@ -175,14 +175,44 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   t0 = Clock::now();
   DisplacementFitOptions dopt = options.displacement;
   dopt.threads = rep.threads;
-  fitted.displacement = MakeDisplacement(domain, GatherSamples(fits, true), dopt, &s);
+  if (dopt.method == DisplacementMethod::kAdaptive) {
+    std::vector<DisplacementTarget> targets;
+    MakeDisplacementTargets(domain, patches, fits, &targets);
+    std::vector<double> half(static_cast<std::size_t>(domain.num_vertices()));
+    for (Index v = 0; v < domain.num_vertices(); ++v) {
+      half[static_cast<std::size_t>(v)] =
+          ChartHalfExtent(domain.chart(v), domain.options().blend_lb);
+    }
+    AdaptiveDisplacementOptions aopt = dopt.adaptive;
+    aopt.max_levels = dopt.max_levels;
+    aopt.threads = rep.threads;
+    BsplineDisplacementData data;
+    s = FitAdaptiveDisplacement(half, targets, aopt, &data, &rep.displacement_fit);
+    if (!s.ok()) return s.WithContext(where);
+    fitted.displacement = BsplineDisplacement::Create(std::move(data), domain.num_vertices(), &s);
+  } else {
+    fitted.displacement = MakeDisplacement(domain, GatherSamples(fits, true), dopt, &s);
+  }
   if (!s.ok()) return s;
   rep.seconds.displacement = SecondsSince(t0);
   rep.seconds.total = SecondsSince(t_total);
   rep.coefficients = fitted.displacement->num_coefficients();
+  rep.coefficients_per_point =
+      static_cast<double>(rep.coefficients) / static_cast<double>(rep.points);
   rep.max_levels = fitted.displacement->max_levels();
-  for (std::uint8_t l : fitted.displacement->data().num_levels) {
-    if (l > 0) rep.finest_coefficients += BsplineLatticeSize(l - 1);
+  for (int k = 0; k < rep.max_levels; ++k) {
+    rep.level_coefficients.push_back(fitted.displacement->level_coefficients(k));
+  }
+  {
+    // Each chart's finest level: a dense lattice (merged), or its listed nodes (additive).
+    const BsplineDisplacementData& dd = fitted.displacement->data();
+    std::size_t g = 0;
+    for (std::uint8_t l : dd.num_levels) {
+      if (l == 0) continue;
+      g += l;
+      rep.finest_coefficients +=
+          dd.form == BsplineLevelForm::kMerged ? BsplineLatticeSize(l - 1) : dd.level_counts[g - 1];
+    }
   }
 
   // 4. Error metrics, in the unit where the data's largest side is 1.

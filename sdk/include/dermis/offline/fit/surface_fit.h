@@ -96,8 +96,14 @@ struct FitReport {
   ControlMeshInfo control_mesh;
   std::int64_t control_fit_rounds = 0;   ///< Control-vertex fit rounds done (FitOptions).
   std::int64_t coefficients = 0;         ///< Stored displacement coefficients, all levels.
+  double coefficients_per_point = 0.0;   ///< coefficients / points.
   std::int64_t finest_coefficients = 0;  ///< Those of each chart's finest level only.
-  int max_levels = 0;                    ///< Levels of the deepest chart.
+  /// Stored coefficients per level (all charts), level 0 first.
+  std::vector<std::int64_t> level_coefficients;
+  int max_levels = 0;  ///< Levels of the deepest chart.
+  /// The adaptive displacement fit's stopping rule and final level sizes
+  /// (DisplacementMethod::kAdaptive; empty otherwise).
+  AdaptiveDisplacementReport displacement_fit;
   int threads = 1;
   double scale = 1.0;  ///< Largest side of the data's bounding box (model units).
   FitErrors error;
