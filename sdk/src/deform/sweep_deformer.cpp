@@ -214,14 +214,18 @@ void BuildGeom(const Chain& c, bool grow, ChainGeom* g) {
   if (n >= 1) g->u[n] = g->u[n - 1];
 }
 
-/// Position, tangent and transport rotation of a chain's trajectory at rest arc length s
-/// (clamped to the chain).
-void EvalTrajectory(const Chain& c, const ChainGeom& g, double s, Vec3* pos, Vec3* tangent,
-                    glm::dquat* transport) {
-  const std::size_t n = c.bones();
-  s = std::clamp(s, 0.0, c.length());
+/// The bone of a chain holding rest arc length s (the last one beyond the end).
+std::size_t BoneAt(const Chain& c, double s) {
   std::size_t i = 0;
-  while (i + 1 < n && s >= c.s[i + 1]) ++i;
+  while (i + 1 < c.bones() && s >= c.s[i + 1]) ++i;
+  return i;
+}
+
+/// Position, tangent and transport rotation of a chain's trajectory at rest arc length s (in
+/// [0, length]) on bone i = BoneAt(c, s) (a binding keeps it: no search per frame).
+void EvalTrajectoryOnBone(const Chain& c, const ChainGeom& g, double s, std::size_t i, Vec3* pos,
+                          Vec3* tangent, glm::dquat* transport) {
+  const std::size_t n = c.bones();
   // In the second half of joint i's arc?
   std::size_t j = 0;
   if (i >= 1 && s < c.s[i] + g.h[i]) {
@@ -252,6 +256,13 @@ void EvalTrajectory(const Chain& c, const ChainGeom& g, double s, Vec3* pos, Vec
   *pos = from + f * (to - from);
   *tangent = g.t[i];
   *transport = g.u[i];
+}
+
+/// The same at any s, clamped to the chain.
+void EvalTrajectory(const Chain& c, const ChainGeom& g, double s, Vec3* pos, Vec3* tangent,
+                    glm::dquat* transport) {
+  s = std::clamp(s, 0.0, c.length());
+  EvalTrajectoryOnBone(c, g, s, BoneAt(c, s), pos, tangent, transport);
 }
 
 class SweepDeformer final : public Deformer {
@@ -543,8 +554,8 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
       bind.chain = static_cast<std::uint32_t>(ids[q]);
       bind.weight = weight;
       bind.s = best_s;
-      std::size_t bone = 0;
-      while (bone + 1 < c.bones() && best_s >= c.s[bone + 1]) ++bone;
+      // best_s lies in [0, length] (a bone's range): EvalTrajectoryOnBone takes it as is.
+      const std::size_t bone = BoneAt(c, best_s);
       bind.bone = static_cast<std::uint32_t>(bone);
       Vec3 p, t;
       glm::dquat u;
@@ -681,7 +692,7 @@ void SweepDeformer::EvalBinding(const Binding& b, Vec3* x_out, glm::dquat* rotat
   const std::size_t n = c.bones();
   Vec3 pos, tangent;
   glm::dquat transport;
-  EvalTrajectory(c, c.pose, b.s, &pos, &tangent, &transport);
+  EvalTrajectoryOnBone(c, c.pose, b.s, b.bone, &pos, &tangent, &transport);
   // Twist: the ramps precomputed at binding (with no reach past the joints, linear in s
   // between them as in docs/notes/sweep.md 1.2).
   double twist = c.tau[b.twist_full];
@@ -695,6 +706,9 @@ void SweepDeformer::EvalBinding(const Binding& b, Vec3* x_out, glm::dquat* rotat
   }
   const glm::dquat g = glm::angleAxis(twist, tangent) * transport * c.q0;
   Vec3 x = pos + c.scale * (g * (b.axial + sigma * b.radial));
+  // Without a bump the offset is carried rigidly: the same bytes as the rigid image below.
+  const bool unbumped = sigma == 1.0;
+  if (rotation != nullptr && unbumped) *rigid = x;
   if (options_.clamp_folds) {
     // The bisector planes of the joints at both ends of the vertex's bone.
     for (std::size_t j : {static_cast<std::size_t>(b.bone), static_cast<std::size_t>(b.bone) + 1}) {
@@ -707,7 +721,7 @@ void SweepDeformer::EvalBinding(const Binding& b, Vec3* x_out, glm::dquat* rotat
   *x_out = x;
   if (rotation != nullptr) {
     *rotation = g * b.rest_back;
-    *rigid = pos + c.scale * (g * (b.axial + b.radial));
+    if (!unbumped) *rigid = pos + c.scale * (g * (b.axial + b.radial));
   }
   if (normal != nullptr) *normal = g * b.normal;
 }
