@@ -43,6 +43,7 @@
 
 #include "dermis/asset/asset_pose.h"
 #include "dermis/core/parallel.h"
+#include "dermis/deform/deformer.h"
 #include "dermis/offline/character/character_fit.h"
 #include "dermis/offline/fit/surface_fit.h"
 #include "dermis/offline/io/point_input.h"
@@ -608,6 +609,51 @@ int main(int argc, char** argv) {
     std::printf("| %s | %zu | %d | %.3f | %.3f | %.3f | %.1f | %s | %s |\n", f.output.c_str(),
                 f.vertices, f.threads, f.pose * 1e3, f.evaluate * 1e3, total * 1e3,
                 static_cast<double>(f.vertices) * 1e-6 / total, gpu_eval, gpu_frame);
+  }
+
+  // The deformers alone on CesiumMan's control vertices (part 0), over the same 30 palettes:
+  // the sweep against DQS in the same process, whose ratio survives a busy machine better than
+  // either time (docs/deformation.md, "Cost").
+  double deform_s[3] = {0.0, 0.0, 0.0};
+  {
+    const CharacterPart& part = rc->character().parts[0];
+    const std::size_t n = part.surface.rest_positions.size();
+    std::vector<VertexWeights> w(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      w[i].joints = part.control_joints[i];
+      w[i].weights = part.control_weights[i];
+    }
+    std::vector<std::vector<glm::dmat4>> dpal;
+    for (const std::vector<float>& pal : palettes) {
+      std::vector<glm::dmat4> d(pal.size() / 16);
+      for (std::size_t j = 0; j < d.size(); ++j) {
+        for (int c = 0; c < 4; ++c) {
+          for (int r = 0; r < 4; ++r) d[j][c][r] = static_cast<double>(pal[16 * j + 4 * c + r]);
+        }
+      }
+      dpal.push_back(std::move(d));
+    }
+    std::vector<Vec3> out(n);
+    const DeformerKind kinds[3] = {DeformerKind::kLbs, DeformerKind::kDqs, DeformerKind::kSweep};
+    for (int k = 0; k < 3; ++k) {
+      std::unique_ptr<Deformer> d;
+      if (!MakeDeformer(kinds[k], *rc->rig(0), part.surface.rest_positions.data(), nullptr,
+                        w.data(), n, &d)
+               .ok()) {
+        return 1;
+      }
+      std::size_t frame = 0;
+      deform_s[k] = TimePerCall(
+          [&] {
+            d->SetPose(dpal[frame++ % dpal.size()].data());
+            d->Deform(0, n, out.data(), nullptr);
+          },
+          trials, min_seconds);
+    }
+    std::printf(
+        "\nDeformers alone (SetPose + Deform of the %zu control vertices, one thread): LBS %.3f "
+        "ms, DQS %.3f ms, sweep %.3f ms (%.2f x DQS)\n",
+        n, deform_s[0] * 1e3, deform_s[1] * 1e3, deform_s[2] * 1e3, deform_s[2] / deform_s[1]);
   }
 
   if (!json_path.empty()) {
