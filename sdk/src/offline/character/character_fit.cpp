@@ -95,24 +95,53 @@ VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalP
   return b;
 }
 
-/// Extra data points inside the triangles, so the surface follows the source between its
-/// vertices: a barycentric grid of about `spacing` in every triangle longer than twice that,
-/// interior points only (the vertices are data already).
-std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing) {
+/// Extra data points on the triangles, so the surface follows the source between its
+/// vertices: a barycentric grid of about `spacing` inside every triangle longer than twice
+/// that, and points about `spacing` apart along every edge longer than that (the vertices are
+/// data already). Edges where the source turns sharply (boundaries, and creases whose
+/// dihedral angle exceeds `crease_angle` radians) get `crease_factor` times as many: the smooth
+/// domain surface rounds a crease, and only data on the crease line ask the displacement to
+/// follow it (docs/characters.md, "Where the distances are").
+std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double crease_angle,
+                              double crease_factor) {
   std::vector<Vec3> out;
   if (!(spacing > 0.0)) return out;
+  std::vector<Vec3> normal(static_cast<std::size_t>(mesh.num_faces()));
+  std::map<std::pair<Index, Index>, std::vector<Index>> edges;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
     const Vec3 &a = mesh.positions[v[0]], &b = mesh.positions[v[1]], &c = mesh.positions[v[2]];
+    const Vec3 n = glm::cross(b - a, c - a);
+    const double ln = glm::length(n);
+    normal[static_cast<std::size_t>(f)] = ln > 0.0 ? n / ln : Vec3(0.0);
+    for (int k = 0; k < 3; ++k) {
+      const Index x = v[k], y = v[(k + 1) % 3];
+      edges[{std::min(x, y), std::max(x, y)}].push_back(f);
+    }
     const double longest =
         std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
     if (!(longest > 2.0 * spacing)) continue;
-    const int n = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
-    for (int i = 1; i < n; ++i) {
-      for (int j = 1; i + j < n; ++j) {
-        const double s = double(i) / n, t = double(j) / n;
+    const int n_grid = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
+    for (int i = 1; i < n_grid; ++i) {
+      for (int j = 1; i + j < n_grid; ++j) {
+        const double s = double(i) / n_grid, t = double(j) / n_grid;
         out.push_back((1.0 - s - t) * a + s * b + t * c);
       }
+    }
+  }
+  const double cos_crease = std::cos(crease_angle);
+  for (const auto& e : edges) {
+    bool sharp = e.second.size() != 2;
+    if (!sharp) {
+      sharp = glm::dot(normal[static_cast<std::size_t>(e.second[0])],
+                       normal[static_cast<std::size_t>(e.second[1])]) < cos_crease;
+    }
+    const Vec3 &a = mesh.positions[e.first.first], &b = mesh.positions[e.first.second];
+    const double h = sharp ? spacing / std::max(1.0, crease_factor) : spacing;
+    const int n_edge = std::min(128, static_cast<int>(std::ceil(glm::length(b - a) / h)));
+    for (int i = 1; i < n_edge; ++i) {
+      const double s = double(i) / n_edge;
+      out.push_back((1.0 - s) * a + s * b);
     }
   }
   return out;
@@ -253,7 +282,8 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
   if (options.samples_per_control_edge > 0.0) {
     const double edge = std::sqrt(Area(dense) / fo.control_vertices);
-    const std::vector<Vec3> extra = AreaSamples(dense, edge / options.samples_per_control_edge);
+    const std::vector<Vec3> extra = AreaSamples(dense, edge / options.samples_per_control_edge,
+                                                options.crease_angle, options.crease_samples);
     input.points.insert(input.points.end(), extra.begin(), extra.end());
   }
   input.mesh = &dense;
@@ -355,7 +385,6 @@ Index MeshSkin(const Asset& asset, std::size_t m) {
   }
   return kInvalidIndex;
 }
-
 
 }  // namespace
 
