@@ -16,6 +16,7 @@
 //                             [--density D] [--control-fit ITERATIONS] [--finest-passes P]
 //                             [--smoothing S] [--samples S] [--crease-samples C] [--crease-angle A]
 //                             [--max-turn T] [--repeat R] [--where] [--node-weight W]
+//                             [--budget COEFFICIENTS_PER_POINT]
 //                             [--detail] [--mba]
 // --density, --finest-passes and --smoothing set the paper's per-chart MBA (--mba); the default
 // displacement fit is the adaptive one (docs/fitting.md, "Adaptive displacement levels").
@@ -175,13 +176,15 @@ struct Settings {
   bool detail = false, mba = false;
   bool where = false;  ///< --where: the largest character distances and what is there.
   ControlMeshMethod method = ControlMeshMethod::kRemesh;
-  double density = -1.0;    // -1: FitOptions' default
-  int control_fit = -1;     // -1: FitOptions' default
-  int finest_passes = -1;   // -1: FitOptions' default
-  double smoothing = -1.0;  // -1: FitOptions' default
-  double samples = -1.0;    // -1: CharacterFitOptions' default
-  double crease_samples = -1.0, crease_angle = -1.0;
-  double node_weight = -1.0;      // -1: the fit's default  // -1: CharacterFitOptions' defaults
+  double density = -1.0;          // -1: FitOptions' default
+  int control_fit = -1;           // -1: FitOptions' default
+  int finest_passes = -1;         // -1: FitOptions' default
+  double smoothing = -1.0;        // -1: FitOptions' default
+  double samples = -1.0;          // -1: CharacterFitOptions' default
+  double crease_samples = -1.0;   // -1: CharacterFitOptions' default
+  double crease_angle = -1.0;     // -1: CharacterFitOptions' default
+  double node_weight = -1.0;      // -1: the fit's default
+  double budget = -1.0;           // coefficients per point; -1: the fit's default, 0: none
   double max_turn = -1.0;         // -1: CharacterFitOptions' default
   double level_smoothing = -1.0;  // -1: the adaptive fit's default
   bool Row(const char* name) const { return rows.find(name) != std::string::npos; }
@@ -196,6 +199,7 @@ void ApplySettings(const Settings& st, FitOptions* options) {
   if (st.mba) options->displacement.method = DisplacementMethod::kMba;
   if (st.level_smoothing >= 0.0) options->displacement.adaptive.smoothing = st.level_smoothing;
   if (st.node_weight >= 0.0) options->displacement.adaptive.min_node_weight = st.node_weight;
+  if (st.budget >= 0.0) options->displacement.adaptive.max_coefficients_per_point = st.budget;
 }
 
 void PrintControlMesh(const char* name, const FitReport& r) {
@@ -667,6 +671,8 @@ int main(int argc, char** argv) {
       st.crease_angle = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--node-weight") == 0 && i + 1 < argc) {
       st.node_weight = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--budget") == 0 && i + 1 < argc) {
+      st.budget = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--where") == 0) {
       st.where = true;
     } else if (std::strcmp(argv[i], "--mba") == 0) {
