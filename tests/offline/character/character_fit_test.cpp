@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "dermis/asset/asset_validate.h"
+#include "dermis/offline/build/control_mesh.h"
 #include "dermis/offline/character/character_export.h"
 #include "dermis/runtime/character.h"
 #include "test_meshes.h"
@@ -300,6 +301,36 @@ TEST_CASE("character: samples on a low-poly box's edges hold the surface to its 
   // still rounds the corners, where three creases meet.
   CHECK(d < 0.085);
   CHECK(d_sparse > 2.0 * d);
+}
+
+TEST_CASE("character: the simplification's control mesh is kept only where it fits better") {
+  const Asset box = LowPolyBox();
+  CharacterFitOptions both;
+  both.fit.threads = 2;
+  CharacterFitOptions remesh_only = both;
+  remesh_only.compare_simplified = false;
+  CharacterFitOptions simplify_only = remesh_only;
+  simplify_only.fit.control_method = ControlMeshMethod::kSimplify;
+  Character a, r, s;
+  CharacterFitReport ra, rr, rs;
+  REQUIRE(FitCharacter(box, both, &a, &ra).ok());
+  REQUIRE(FitCharacter(box, remesh_only, &r, &rr).ok());
+  REQUIRE(FitCharacter(box, simplify_only, &s, &rs).ok());
+  REQUIRE(ra.part_control_meshes.size() == 1);
+  CHECK(rr.part_control_meshes[0].method == "remesh");
+  CHECK(rs.part_control_meshes[0].method == "simplify");
+  const double ha = a.parts[0].fit.hausdorff, hr = r.parts[0].fit.hausdorff,
+               hs = s.parts[0].fit.hausdorff;
+  INFO("Hausdorff: kept " << ha << ", remesh " << hr << ", simplification " << hs << "; note "
+                          << ra.part_notes[0]);
+  // The choice is the rule: the simplification's fit where it is below 0.9 x the remesh's.
+  const bool simplified = hs < 0.9 * hr;
+  CHECK(ra.part_control_meshes[0].method == (simplified ? "simplify" : "remesh"));
+  CHECK(ha == (simplified ? hs : hr));
+  CHECK((ra.part_notes[0].find("simplification's control mesh was kept") != std::string::npos) ==
+        simplified);
+  CHECK(a.parts[0].surface.rest_positions.size() ==
+        (simplified ? s : r).parts[0].surface.rest_positions.size());
 }
 
 }  // namespace dermis

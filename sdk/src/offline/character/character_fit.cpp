@@ -256,10 +256,12 @@ ComponentMesh MakeComponentMesh(const WeldedMesh& w, const Components& component
 }
 
 /// Fits one component's surface (paper section 4): its vertices first (so point_fits[i] is
-/// vertex i's), then extra samples inside large triangles; a control-vertex count from the
-/// vertex ratio. Returns an empty string or why the component stays unfitted.
+/// vertex i's), then samples on its triangles; a control-vertex count from the vertex ratio;
+/// the simplification's control mesh instead of the remesh where it fits clearly better (then
+/// `kept_simplified` says so). Returns an empty string or why the component stays unfitted.
 std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& options,
-                         const std::string& stage, FittedSurface* fitted, FitReport* fr) {
+                         const std::string& stage, FittedSurface* fitted, FitReport* fr,
+                         std::string* kept_simplified) {
   std::string reason = CheckComponent(dense, options.min_vertices);
   if (!reason.empty()) return reason;
   FitOptions fo = options.fit;
@@ -291,7 +293,30 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
     fo.progress = [&](const std::string& s) { options.progress(stage + ": " + s); };
   }
   const Status s = FitSurface(input, fo, fitted, fr);
-  return s.ok() ? std::string() : s.message();
+  if (!s.ok()) return s.message();
+  if (options.compare_simplified && fo.control_method == ControlMeshMethod::kRemesh &&
+      fr->control_mesh.method == "remesh") {
+    // The remesh moves the source's crease vertices off its creases; a simplification keeps
+    // them. Fit on both and keep the simplification's only where its two-sided Hausdorff
+    // distance (E3, level 8 against the component's triangles) is clearly lower.
+    FitOptions so = fo;
+    so.control_method = ControlMeshMethod::kSimplify;
+    so.progress = nullptr;
+    FittedSurface alt;
+    FitReport alt_report;
+    if (FitSurface(input, so, &alt, &alt_report).ok() &&
+        alt_report.error.hausdorff < options.simplified_margin * fr->error.hausdorff) {
+      char note[160];
+      std::snprintf(note, sizeof(note),
+                    "the simplification's control mesh was kept: Hausdorff %.3g against the "
+                    "remesh's %.3g (of the part's scale)",
+                    alt_report.error.hausdorff, fr->error.hausdorff);
+      *fitted = std::move(alt);
+      *fr = std::move(alt_report);
+      *kept_simplified = note;
+    }
+  }
+  return std::string();
 }
 
 /// The parameters of a component's vertices: the fitted one, or the closest point for the few
@@ -422,7 +447,8 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
       unfitted.triangles = dense.num_faces();
       FittedSurface fitted;
       FitReport fr;
-      unfitted.reason = FitComponent(dense, options, stage, &fitted, &fr);
+      std::string kept_simplified;
+      unfitted.reason = FitComponent(dense, options, stage, &fitted, &fr, &kept_simplified);
       if (!unfitted.reason.empty()) {
         ch.unfitted.push_back(unfitted);
         ++rep.parts_unfitted;
@@ -485,6 +511,11 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
                  std::to_string(dense.num_vertices()) + " vertices: the remesh failed (" +
                  fr.control_mesh.fallback + ") and the simplification's split was used";
         }
+      }
+      if (!kept_simplified.empty()) {
+        note = "part " + std::to_string(ch.parts.size()) + " (" + stage + ") has " +
+               std::to_string(fr.control_vertices) + " control vertices for " +
+               std::to_string(dense.num_vertices()) + " vertices: " + kept_simplified;
       }
       rep.part_notes.push_back(note);
       ch.parts.push_back(std::move(part));

@@ -68,6 +68,12 @@ struct CharacterFitOptions {
   /// closer, so the displacement follows the crease the smooth domain surface rounds.
   double crease_angle = 0.5;
   double crease_samples = 2.0;
+  /// Also fit each component on the simplification's control mesh (ControlMeshMethod::
+  /// kSimplify), which keeps the source's crease vertices, and keep that fit where its
+  /// two-sided Hausdorff distance is below simplified_margin times the remesh's (box-shaped
+  /// parts; docs/characters.md, "Where the distances are"). Doubles the fit time.
+  bool compare_simplified = true;
+  double simplified_margin = 0.9;
   /// Components with fewer welded vertices are left unfitted ("too small").
   int min_vertices = 8;
   /// Called with "mesh M component C: stage" as the fit progresses (may be empty).
