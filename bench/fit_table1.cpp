@@ -14,17 +14,21 @@
 //                             [--control-vertices N] [--torus-vertices N]
 //                             [--control-method remesh|simplify]
 //                             [--density D] [--control-fit ITERATIONS] [--finest-passes P]
-//                             [--smoothing S] [--samples S] [--max-turn T] [--repeat R]
+//                             [--smoothing S] [--samples S] [--crease-samples C] [--crease-angle A]
+//                             [--max-turn T] [--repeat R] [--where] [--node-weight W]
+//                             [--budget COEFFICIENTS_PER_POINT]
 //                             [--detail] [--mba]
 // --density, --finest-passes and --smoothing set the paper's per-chart MBA (--mba); the default
 // displacement fit is the adaptive one (docs/fitting.md, "Adaptive displacement levels").
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -170,13 +174,18 @@ struct Settings {
   std::string rows = "bunny,torus,characters";
   int control_vertices = 540, torus_vertices = 200, repeat = 3;
   bool detail = false, mba = false;
+  bool where = false;  ///< --where: the largest character distances and what is there.
   ControlMeshMethod method = ControlMeshMethod::kRemesh;
-  double density = -1.0;    // -1: FitOptions' default
-  int control_fit = -1;     // -1: FitOptions' default
-  int finest_passes = -1;   // -1: FitOptions' default
-  double smoothing = -1.0;  // -1: FitOptions' default
-  double samples = -1.0;    // -1: CharacterFitOptions' default
-  double max_turn = -1.0;   // -1: CharacterFitOptions' default
+  double density = -1.0;          // -1: FitOptions' default
+  int control_fit = -1;           // -1: FitOptions' default
+  int finest_passes = -1;         // -1: FitOptions' default
+  double smoothing = -1.0;        // -1: FitOptions' default
+  double samples = -1.0;          // -1: CharacterFitOptions' default
+  double crease_samples = -1.0;   // -1: CharacterFitOptions' default
+  double crease_angle = -1.0;     // -1: CharacterFitOptions' default
+  double node_weight = -1.0;      // -1: the fit's default
+  double budget = -1.0;           // coefficients per point; -1: the fit's default, 0: none
+  double max_turn = -1.0;         // -1: CharacterFitOptions' default
   double level_smoothing = -1.0;  // -1: the adaptive fit's default
   bool Row(const char* name) const { return rows.find(name) != std::string::npos; }
 };
@@ -189,6 +198,8 @@ void ApplySettings(const Settings& st, FitOptions* options) {
   if (st.smoothing >= 0.0) options->displacement.smoothing = st.smoothing;
   if (st.mba) options->displacement.method = DisplacementMethod::kMba;
   if (st.level_smoothing >= 0.0) options->displacement.adaptive.smoothing = st.level_smoothing;
+  if (st.node_weight >= 0.0) options->displacement.adaptive.min_node_weight = st.node_weight;
+  if (st.budget >= 0.0) options->displacement.adaptive.max_coefficients_per_point = st.budget;
 }
 
 void PrintControlMesh(const char* name, const FitReport& r) {
@@ -458,6 +469,75 @@ std::vector<Vec3> SampleTriangles(const Triangles& m, double h) {
   return out;
 }
 
+// --where: the largest distances of one direction, each with its place in the bounding box
+// (0..1 per axis), and what the source is like at the nearest source point: on a boundary
+// edge, and the largest dihedral angle (degrees) of the source triangle with its neighbours
+// (a crease), and the source triangle's longest edge in % of the diagonal.
+void PrintWorst(const char* what, const std::vector<Vec3>& points, const TriangleDistanceTree& tree,
+                const TriangleDistanceTree& source_tree, const Triangles& source, const Vec3& lo,
+                const Vec3& hi, double diagonal) {
+  // Weld the source by position for its edges.
+  std::map<std::array<double, 3>, std::uint32_t> weld;
+  std::vector<std::uint32_t> id(source.positions.size());
+  for (std::size_t v = 0; v < source.positions.size(); ++v) {
+    const Vec3& x = source.positions[v];
+    id[v] = weld.emplace(std::array<double, 3>{x.x, x.y, x.z}, static_cast<std::uint32_t>(v))
+                .first->second;
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  const std::size_t nt = source.indices.size() / 3;
+  std::vector<Vec3> normal(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Vec3 &a = source.positions[source.indices[3 * t]],
+               &b = source.positions[source.indices[3 * t + 1]],
+               &c = source.positions[source.indices[3 * t + 2]];
+    const Vec3 n = glm::cross(b - a, c - a);
+    const double l = glm::length(n);
+    normal[t] = l > 0 ? n / l : Vec3(0.0);
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t x = id[source.indices[3 * t + static_cast<std::size_t>(k)]],
+                    y = id[source.indices[3 * t + static_cast<std::size_t>((k + 1) % 3)]];
+      edges[{std::min(x, y), std::max(x, y)}].push_back(t);
+    }
+  }
+  std::vector<double> crease(nt, 0.0);
+  std::vector<bool> boundary(nt, false);
+  for (const auto& e : edges) {
+    if (e.second.size() == 1) boundary[e.second[0]] = true;
+    for (std::size_t i = 0; i < e.second.size(); ++i) {
+      for (std::size_t j = 0; j < e.second.size(); ++j) {
+        const double c = glm::clamp(glm::dot(normal[e.second[i]], normal[e.second[j]]), -1.0, 1.0);
+        crease[e.second[i]] = std::max(crease[e.second[i]], std::acos(c) * 57.29577951308232);
+      }
+    }
+  }
+  std::vector<std::pair<double, std::size_t>> d(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) d[i] = {tree.Query(points[i]).distance, i};
+  std::sort(d.begin(), d.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::printf("  worst %s:\n", what);
+  std::vector<Vec3> shown;
+  for (std::size_t k = 0; k < d.size() && shown.size() < 8; ++k) {
+    const Vec3& p = points[d[k].second];
+    bool near = false;
+    for (const Vec3& q : shown) near = near || glm::length(p - q) < 0.03 * diagonal;
+    if (near) continue;
+    shown.push_back(p);
+    const ClosestPoint cp = source_tree.Query(p);
+    const std::size_t t = static_cast<std::size_t>(cp.triangle);
+    const Vec3 &a = source.positions[source.indices[3 * t]],
+               &b = source.positions[source.indices[3 * t + 1]],
+               &c = source.positions[source.indices[3 * t + 2]];
+    const double longest =
+        std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
+    const Vec3 r = (p - lo) / glm::max(hi - lo, Vec3(1e-30));
+    std::printf(
+        "    %.2f%% at (%.2f %.2f %.2f): source triangle %zu%s, crease %.0f deg, longest edge "
+        "%.1f%%\n",
+        100.0 * d[k].first / diagonal, r.x, r.y, r.z, t, boundary[t] ? " on a boundary" : "",
+        crease[t], 100.0 * longest / diagonal);
+  }
+}
+
 int RunCharacters(const Settings& st) {
   const char* names[] = {"RiggedSimple", "RiggedFigure", "Fox", "CesiumMan"};
   std::printf(
@@ -478,6 +558,8 @@ int RunCharacters(const Settings& st) {
     CharacterFitOptions options;
     ApplySettings(st, &options.fit);
     if (st.samples >= 0.0) options.samples_per_control_edge = st.samples;
+    if (st.crease_samples >= 0.0) options.crease_samples = st.crease_samples;
+    if (st.crease_angle >= 0.0) options.crease_angle = st.crease_angle;
     if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
     Character ch;
     CharacterFitReport report;
@@ -523,6 +605,12 @@ int RunCharacters(const Settings& st) {
     double m1 = 0, x1 = 0, m2 = 0, x2 = 0;
     MeanMax(SampleTriangles(lod, diagonal / 400.0), source_tree, diagonal / 100.0, &m1, &x1);
     MeanMax(SampleTriangles(source, diagonal / 400.0), lod_tree, diagonal / 100.0, &m2, &x2);
+    if (st.where) {
+      PrintWorst("lod -> source", SampleTriangles(lod, diagonal / 400.0), source_tree, source_tree,
+                 source, lo, hi, diagonal);
+      PrintWorst("source -> lod", SampleTriangles(source, diagonal / 400.0), lod_tree, source_tree,
+                 source, lo, hi, diagonal);
+    }
     std::int64_t points = 0, control_vertices = 0, coefficients = 0;
     for (const CharacterPart& part : ch.parts) {
       points += part.fit.points;
@@ -577,6 +665,16 @@ int main(int argc, char** argv) {
       st.detail = true;
     } else if (std::strcmp(argv[i], "--level-smoothing") == 0 && i + 1 < argc) {
       st.level_smoothing = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--crease-samples") == 0 && i + 1 < argc) {
+      st.crease_samples = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--crease-angle") == 0 && i + 1 < argc) {
+      st.crease_angle = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--node-weight") == 0 && i + 1 < argc) {
+      st.node_weight = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--budget") == 0 && i + 1 < argc) {
+      st.budget = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--where") == 0) {
+      st.where = true;
     } else if (std::strcmp(argv[i], "--mba") == 0) {
       st.mba = true;
     } else if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {

@@ -86,7 +86,7 @@ Json DescribeCharacter(const Character& ch) {
     fit["e1_max_percent"] = 100.0 * f.e1_max;
     fit["hausdorff_percent"] = 100.0 * f.hausdorff;
     fit["coefficients"] = f.coefficients;
-    // Per data point fitted (the welded vertices and the samples inside large triangles, as the
+    // Per data point fitted (the welded vertices and the samples on the triangles, as the
     // part's surface records them; older files: per welded vertex).
     const std::int64_t fitted = part.surface.data_points > 0 ? part.surface.data_points : f.points;
     fit["data_points"] = fitted;

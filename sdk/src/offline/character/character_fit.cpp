@@ -95,24 +95,53 @@ VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalP
   return b;
 }
 
-/// Extra data points inside the triangles, so the surface follows the source between its
-/// vertices: a barycentric grid of about `spacing` in every triangle longer than twice that,
-/// interior points only (the vertices are data already).
-std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing) {
+/// Extra data points on the triangles, so the surface follows the source between its
+/// vertices: a barycentric grid of about `spacing` inside every triangle longer than twice
+/// that, and points about `spacing` apart along every edge longer than that (the vertices are
+/// data already). Edges where the source turns sharply (boundaries, and creases whose
+/// dihedral angle exceeds `crease_angle` radians) get `crease_factor` times as many: the smooth
+/// domain surface rounds a crease, and only data on the crease line ask the displacement to
+/// follow it (docs/characters.md, "Where the distances are").
+std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double crease_angle,
+                              double crease_factor) {
   std::vector<Vec3> out;
   if (!(spacing > 0.0)) return out;
+  std::vector<Vec3> normal(static_cast<std::size_t>(mesh.num_faces()));
+  std::map<std::pair<Index, Index>, std::vector<Index>> edges;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
     const Vec3 &a = mesh.positions[v[0]], &b = mesh.positions[v[1]], &c = mesh.positions[v[2]];
+    const Vec3 n = glm::cross(b - a, c - a);
+    const double ln = glm::length(n);
+    normal[static_cast<std::size_t>(f)] = ln > 0.0 ? n / ln : Vec3(0.0);
+    for (int k = 0; k < 3; ++k) {
+      const Index x = v[k], y = v[(k + 1) % 3];
+      edges[{std::min(x, y), std::max(x, y)}].push_back(f);
+    }
     const double longest =
         std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
     if (!(longest > 2.0 * spacing)) continue;
-    const int n = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
-    for (int i = 1; i < n; ++i) {
-      for (int j = 1; i + j < n; ++j) {
-        const double s = double(i) / n, t = double(j) / n;
+    const int n_grid = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
+    for (int i = 1; i < n_grid; ++i) {
+      for (int j = 1; i + j < n_grid; ++j) {
+        const double s = double(i) / n_grid, t = double(j) / n_grid;
         out.push_back((1.0 - s - t) * a + s * b + t * c);
       }
+    }
+  }
+  const double cos_crease = std::cos(crease_angle);
+  for (const auto& e : edges) {
+    bool sharp = e.second.size() != 2;
+    if (!sharp) {
+      sharp = glm::dot(normal[static_cast<std::size_t>(e.second[0])],
+                       normal[static_cast<std::size_t>(e.second[1])]) < cos_crease;
+    }
+    const Vec3 &a = mesh.positions[e.first.first], &b = mesh.positions[e.first.second];
+    const double h = sharp ? spacing / std::max(1.0, crease_factor) : spacing;
+    const int n_edge = std::min(128, static_cast<int>(std::ceil(glm::length(b - a) / h)));
+    for (int i = 1; i < n_edge; ++i) {
+      const double s = double(i) / n_edge;
+      out.push_back((1.0 - s) * a + s * b);
     }
   }
   return out;
@@ -227,10 +256,12 @@ ComponentMesh MakeComponentMesh(const WeldedMesh& w, const Components& component
 }
 
 /// Fits one component's surface (paper section 4): its vertices first (so point_fits[i] is
-/// vertex i's), then extra samples inside large triangles; a control-vertex count from the
-/// vertex ratio. Returns an empty string or why the component stays unfitted.
+/// vertex i's), then samples on its triangles; a control-vertex count from the vertex ratio;
+/// the simplification's control mesh instead of the remesh where it fits clearly better (then
+/// `kept_simplified` says so). Returns an empty string or why the component stays unfitted.
 std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& options,
-                         const std::string& stage, FittedSurface* fitted, FitReport* fr) {
+                         const std::string& stage, FittedSurface* fitted, FitReport* fr,
+                         std::string* kept_simplified) {
   std::string reason = CheckComponent(dense, options.min_vertices);
   if (!reason.empty()) return reason;
   FitOptions fo = options.fit;
@@ -253,7 +284,8 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
   if (options.samples_per_control_edge > 0.0) {
     const double edge = std::sqrt(Area(dense) / fo.control_vertices);
-    const std::vector<Vec3> extra = AreaSamples(dense, edge / options.samples_per_control_edge);
+    const std::vector<Vec3> extra = AreaSamples(dense, edge / options.samples_per_control_edge,
+                                                options.crease_angle, options.crease_samples);
     input.points.insert(input.points.end(), extra.begin(), extra.end());
   }
   input.mesh = &dense;
@@ -261,7 +293,30 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
     fo.progress = [&](const std::string& s) { options.progress(stage + ": " + s); };
   }
   const Status s = FitSurface(input, fo, fitted, fr);
-  return s.ok() ? std::string() : s.message();
+  if (!s.ok()) return s.message();
+  if (options.compare_simplified && fo.control_method == ControlMeshMethod::kRemesh &&
+      fr->control_mesh.method == "remesh") {
+    // The remesh moves the source's crease vertices off its creases; a simplification keeps
+    // them. Fit on both and keep the simplification's only where its two-sided Hausdorff
+    // distance (E3, level 8 against the component's triangles) is clearly lower.
+    FitOptions so = fo;
+    so.control_method = ControlMeshMethod::kSimplify;
+    so.progress = nullptr;
+    FittedSurface alt;
+    FitReport alt_report;
+    if (FitSurface(input, so, &alt, &alt_report).ok() &&
+        alt_report.error.hausdorff < options.simplified_margin * fr->error.hausdorff) {
+      char note[160];
+      std::snprintf(note, sizeof(note),
+                    "the simplification's control mesh was kept: Hausdorff %.3g against the "
+                    "remesh's %.3g (of the part's scale)",
+                    alt_report.error.hausdorff, fr->error.hausdorff);
+      *fitted = std::move(alt);
+      *fr = std::move(alt_report);
+      *kept_simplified = note;
+    }
+  }
+  return std::string();
 }
 
 /// The parameters of a component's vertices: the fitted one, or the closest point for the few
@@ -356,7 +411,6 @@ Index MeshSkin(const Asset& asset, std::size_t m) {
   return kInvalidIndex;
 }
 
-
 }  // namespace
 
 Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Character* out,
@@ -393,7 +447,8 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
       unfitted.triangles = dense.num_faces();
       FittedSurface fitted;
       FitReport fr;
-      unfitted.reason = FitComponent(dense, options, stage, &fitted, &fr);
+      std::string kept_simplified;
+      unfitted.reason = FitComponent(dense, options, stage, &fitted, &fr, &kept_simplified);
       if (!unfitted.reason.empty()) {
         ch.unfitted.push_back(unfitted);
         ++rep.parts_unfitted;
@@ -456,6 +511,11 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
                  std::to_string(dense.num_vertices()) + " vertices: the remesh failed (" +
                  fr.control_mesh.fallback + ") and the simplification's split was used";
         }
+      }
+      if (!kept_simplified.empty()) {
+        note = "part " + std::to_string(ch.parts.size()) + " (" + stage + ") has " +
+               std::to_string(fr.control_vertices) + " control vertices for " +
+               std::to_string(dense.num_vertices()) + " vertices: " + kept_simplified;
       }
       rep.part_notes.push_back(note);
       ch.parts.push_back(std::move(part));

@@ -62,7 +62,18 @@ struct CharacterFitOptions {
   /// Data points inside the triangles: a barycentric grid whose spacing is the control mesh's
   /// mean edge (sqrt(area / control vertices)) divided by this, so the surface follows the
   /// source between its vertices. 0: vertices only.
-  double samples_per_control_edge = 1.0;
+  double samples_per_control_edge = 2.0;
+  /// Points along the source's edges are spaced like the grid inside its triangles; along its
+  /// boundaries and creases (a dihedral angle above crease_angle, radians) crease_samples times
+  /// closer, so the displacement follows the crease the smooth domain surface rounds.
+  double crease_angle = 0.5;
+  double crease_samples = 2.0;
+  /// Also fit each component on the simplification's control mesh (ControlMeshMethod::
+  /// kSimplify), which keeps the source's crease vertices, and keep that fit where its
+  /// two-sided Hausdorff distance is below simplified_margin times the remesh's (box-shaped
+  /// parts; docs/characters.md, "Where the distances are"). Doubles the fit time.
+  bool compare_simplified = true;
+  double simplified_margin = 0.9;
   /// Components with fewer welded vertices are left unfitted ("too small").
   int min_vertices = 8;
   /// Called with "mesh M component C: stage" as the fit progresses (may be empty).
@@ -84,12 +95,13 @@ struct CharacterFitReport {
 };
 
 /// Fits every mesh of `asset` (which must pass ValidateAsset()). The data points of a component
-/// are its welded vertices plus interior samples of its triangles (spacing a fraction of the
-/// control mesh's edge, CharacterFitOptions::samples_per_control_edge), so the surface follows
-/// the source between its vertices; errors (E1) are reported over the vertices. Only triangle
-/// primitives (lists, strips, fans) are fitted; points and lines stay as they are. A component that
-/// cannot be fitted (too few vertices, degenerate, non-manifold, or a fit error) is recorded
-/// in Character::unfitted with the reason and keeps its original geometry.
+/// are its welded vertices plus samples inside its triangles and along its edges, closer along
+/// creases and boundaries (spacing a fraction of the control mesh's edge,
+/// CharacterFitOptions::samples_per_control_edge, crease_angle, crease_samples), so the surface
+/// follows the source between its vertices; errors (E1) are reported over the vertices. Only
+/// triangle primitives (lists, strips, fans) are fitted; points and lines stay as they are. A
+/// component that cannot be fitted (too few vertices, degenerate, non-manifold, or a fit error) is
+/// recorded in Character::unfitted with the reason and keeps its original geometry.
 Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Character* out,
                     CharacterFitReport* report);
 
