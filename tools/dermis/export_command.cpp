@@ -36,7 +36,36 @@ struct ExportArgs {
   std::string deformer = "sweep";
   int threads = 0;
   bool quiet = false;
+  bool quantize = false;
+  bool compress = false;
 };
+
+/// One stderr line on what --quantize / --compress did (docs/gltf-compression.md).
+void PrintPacking(const GltfExportReport& r) {
+  if (r.quantized) {
+    std::fprintf(stderr,
+                 "dermis export: quantized (KHR_mesh_quantization): positions %d bits (step %.3g, "
+                 "max error %.3g), normals max %.3g deg, weights max %.2g, uv max %.2g",
+                 r.position_bits, r.position_step, r.max_position_error, r.max_normal_error_degrees,
+                 r.max_weight_error, r.max_texcoord_error);
+    if (r.float_target_accessors > 0) {
+      std::fprintf(stderr, ", %zu morph normal accessors kept float32 (deltas beyond [-1, 1])",
+                   r.float_target_accessors);
+    }
+    std::fprintf(stderr, "\n");
+  }
+  if (r.compressed) {
+    std::fprintf(stderr,
+                 "dermis export: compressed (EXT_meshopt_compression, required): %zu -> %zu "
+                 "bytes of vertex, index and animation data",
+                 r.bytes_before_compression, r.bytes_after_compression);
+    if (r.filtered_target_accessors > 0) {
+      std::fprintf(stderr, ", %zu float morph normal accessors filtered (max error %.2g)",
+                   r.filtered_target_accessors, r.max_filtered_target_error);
+    }
+    std::fprintf(stderr, "\n");
+  }
+}
 
 /// Vertex-frames above which the bake warns (24 bytes each: about 400 MB).
 constexpr std::uint64_t kLargeBake = std::uint64_t{1} << 24;
@@ -99,11 +128,15 @@ int RunExport(const ExportArgs& a) {
   gltf.max_influences = a.max_influences;
   gltf.generator = std::string("Dermis ") + DERMIS_VERSION;
   if (a.embed) gltf.dsurf_bytes = bytes;
+  gltf.quantize = a.quantize;
+  gltf.compress = a.compress;
+  GltfExportReport packing;
   MakeParentFolder(a.output);
-  s = ExportGltf(out, gltf, a.output);
+  s = ExportGltf(out, gltf, a.output, &packing);
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.quiet) {
     for (const std::string& n : notes) std::fprintf(stderr, "dermis export: note: %s\n", n.c_str());
+    PrintPacking(packing);
     std::size_t vertices = 0;
     for (const AssetMesh& m : out.meshes) {
       for (const AssetPrimitive& p : m.primitives) vertices += p.positions.size();
@@ -158,6 +191,14 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
   AddDeformerOption(cmd, "--deformer", "--bake-sweep: deformer of the control vertices",
                     &args->deformer)
       ->capture_default_str();
+  cmd->add_flag("--quantize", args->quantize,
+                "Store attributes as integers (KHR_mesh_quantization, required): positions on a "
+                "grid chosen from the model (error reported), normals/tangents as 16-bit "
+                "normalised, UVs/colours/weights as 16-bit normalised");
+  cmd->add_flag("--compress", args->compress,
+                "Encode vertex, index and animation data with meshoptimizer "
+                "(EXT_meshopt_compression, required; three.js, Babylon.js and gltfpack read it, "
+                "Assimp 5.2 does not)");
   AddThreadsOption(cmd, &args->threads, "--bake-sweep: ");
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
