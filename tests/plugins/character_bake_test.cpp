@@ -97,6 +97,19 @@ void CheckBake(const std::string& name) {
     INFO(test::Messages(validation));
     CHECK(validation.errors == 0);
     CHECK(validation.warnings == 0);
+    // The same bake with --quantize --compress (docs/gltf-compression.md): validator-clean,
+    // and three.js (with its meshopt decoder) draws it within the reported position error.
+    const std::string packed_file = tmp.File(std::string("packed_") + DeformerName(kind) + ".glb");
+    GltfExportOptions packed_options;
+    packed_options.quantize = packed_options.compress = true;
+    GltfExportReport packed;
+    s = ExportGltf(baked, packed_options, packed_file, &packed);
+    INFO(s.message());
+    REQUIRE(s.ok());
+    const test::ValidatorReport packed_validation = test::Validate(packed_file, tmp);
+    INFO(test::Messages(packed_validation));
+    CHECK(packed_validation.errors == 0);
+    CHECK(packed_validation.warning_codes.empty());
     Asset back;
     s = ImportGltf(file, &back);
     INFO(s.message());
@@ -129,6 +142,9 @@ void CheckBake(const std::string& name) {
         CHECK(diagonal > 0.0);
         CHECK(worst < 1e-5 * diagonal);
         worst_relative = std::max(worst_relative, worst / diagonal);
+        const auto three_packed = test::ThreePose(packed_file, clip, t, tmp);
+        const double packed_worst = BakeDifference(poser, posed, three_packed, &diagonal);
+        CHECK(packed_worst < 1e-5 * diagonal + packed.max_position_error);
       }
     }
     // What `dermis animate -o POSED.glb` writes: the static asset of one pose (clip 0 halfway),
@@ -159,11 +175,13 @@ void CheckBake(const std::string& name) {
       CHECK(worst < 1e-5 * diagonal);
     }
     std::printf(
-        "%-18s %-5s %zu clips, %4zu frames, %5zu vertices: %8.3f MB, validator %d errors %d "
-        "warnings, three.js vs poser max %.2g of the diagonal\n",
+        "%-18s %-5s %zu clips, %4zu frames, %5zu vertices: %8.3f MB (--quantize --compress "
+        "%.3f MB), validator %d errors %d warnings, three.js vs poser max %.2g of the "
+        "diagonal\n",
         name.c_str(), DeformerName(kind), report.frames.size(), report.targets, report.vertices,
-        static_cast<double>(fs::file_size(file)) / 1e6, validation.errors, validation.warnings,
-        worst_relative);
+        static_cast<double>(fs::file_size(file)) / 1e6,
+        static_cast<double>(fs::file_size(packed_file)) / 1e6, validation.errors,
+        validation.warnings, worst_relative);
   }
 }
 

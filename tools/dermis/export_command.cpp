@@ -17,6 +17,7 @@
 #include "dermis/offline/character/character_pose.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/runtime/character.h"
+#include "progress_bar.h"
 
 namespace dermis::cli {
 namespace {
@@ -26,9 +27,9 @@ constexpr const char* kCommand = "export";
 struct ExportArgs {
   std::string input;
   std::string output;
-  std::string mode = "bound";
-  int level = 4;
-  int displacement_levels = -1;
+  std::string mode = kDefaultMode;
+  int level = kDefaultLevel;
+  int displacement_levels = kAllDisplacementLevels;
   bool embed = false;
   int max_influences = 4;
   bool bake = false;
@@ -99,12 +100,14 @@ Status Bake(const ExportArgs& a, const Character& ch, Asset* out, CharacterBakeR
                    24.0 * static_cast<double>(frames * vertices) / 1e6);
     }
   }
-  return BuildBakedAsset(&poser, a.fps, out, report);
+  ProgressBar bar(kCommand, a.quiet);
+  return BuildBakedAsset(&poser, a.fps, out, report, bar.Callback());
 }
 
 int RunExport(const ExportArgs& a) {
-  if (!IsGltfPath(a.output)) {
-    return Usage(kCommand, a.output + ": the output must be .glb or .gltf");
+  const bool to_stdout = a.output == "-";
+  if (!to_stdout && !IsGltfPath(a.output)) {
+    return Usage(kCommand, a.output + ": the output must be .glb, .gltf or - (GLB on stdout)");
   }
   std::string bytes;
   Character ch;
@@ -131,9 +134,19 @@ int RunExport(const ExportArgs& a) {
   gltf.quantize = a.quantize;
   gltf.compress = a.compress;
   GltfExportReport packing;
-  MakeParentFolder(a.output);
-  s = ExportGltf(out, gltf, a.output, &packing);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (to_stdout) {
+    // `-o -`: the GLB on stdout, written only once it is complete (nothing half-written).
+    std::string glb;
+    s = SerializeGltf(out, gltf, /*binary=*/true, &glb, &packing);
+    if (!s.ok()) return Fail(kCommand, s);
+    if (std::fwrite(glb.data(), 1, glb.size(), stdout) != glb.size() || std::fflush(stdout) != 0) {
+      return Fail(kCommand, Status::IoError("<stdout>: write failed"));
+    }
+  } else {
+    MakeParentFolder(a.output);
+    s = ExportGltf(out, gltf, a.output, &packing);
+    if (!s.ok()) return Fail(kCommand, s);
+  }
   if (!a.quiet) {
     for (const std::string& n : notes) std::fprintf(stderr, "dermis export: note: %s\n", n.c_str());
     PrintPacking(packing);
@@ -171,7 +184,8 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
   CLI::App* cmd = app->add_subcommand(
       "export", "Export a fitted character (.dsurf) as a skinned glTF (.glb or .gltf).");
   cmd->add_option("INPUT", args->input, "Fitted character or surface (.dsurf)")->required();
-  cmd->add_option("-o,--output", args->output, "Output .glb or .gltf")->required();
+  cmd->add_option("-o,--output", args->output, "Output .glb or .gltf; - writes the GLB to stdout")
+      ->required();
   AddEvaluationOptions(cmd, "original topology, UVs and materials on the displaced surface",
                        &args->mode, &args->level, &args->displacement_levels);
   cmd->add_option("--max-influences", args->max_influences,
@@ -203,7 +217,7 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
       cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
-      [args] { return RunExport(*args); });
+      [args] { return RunExport(*args); }, nullptr, /*stdout_ok=*/true);
 }
 
 }  // namespace dermis::cli

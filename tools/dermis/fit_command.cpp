@@ -19,6 +19,7 @@
 #include "dermis/offline/io/obj_io.h"
 #include "dermis/offline/io/point_input.h"
 #include "importers.h"
+#include "progress_bar.h"
 
 namespace dermis::cli {
 namespace {
@@ -223,8 +224,10 @@ int RunFitCharacter(const FitArgs& a) {
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.threads = a.threads;
-  const ProgressLine progress("dermis fit", a.quiet);
-  if (progress.enabled()) options.progress = [&](const std::string& st) { progress.Update(st); };
+  ProgressBar progress(kCommand, a.quiet);
+  if (progress.enabled()) {
+    options.progress = [&](const std::string& st) { progress.Update(st.c_str(), 0, 0); };
+  }
   Character ch;
   CharacterFitReport report;
   s = FitCharacter(asset, options, &ch, &report);
@@ -291,8 +294,10 @@ int RunFit(const FitArgs& a) {
   if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
   options.holdout = a.holdout;
   options.threads = a.threads;
-  const ProgressLine progress("dermis fit", a.quiet);
-  if (progress.enabled()) options.progress = [&](const std::string& st) { progress.Update(st); };
+  ProgressBar progress(kCommand, a.quiet);
+  if (progress.enabled()) {
+    options.progress = [&](const std::string& st) { progress.Update(st.c_str(), 0, 0); };
+  }
   FittedSurface fitted;
   FitReport report;
   s = FitSurface(input, options, &fitted, &report);
