@@ -125,7 +125,7 @@ void CheckSameDrawing(const Asset& asset, const Asset& back, const GltfExportRep
 }
 
 TEST_CASE(
-    "--quantize and --compress exports of the shared characters: validator, three.js, "
+    "Quantized and compressed exports of the shared characters: validator, three.js, "
     "re-import",
     "[gltf][compression][data]") {
   if (!fs::exists(kSharedGltfDir)) {

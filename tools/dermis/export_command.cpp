@@ -107,7 +107,8 @@ Status Bake(const ExportArgs& a, const Character& ch, Asset* out, CharacterBakeR
 int RunExport(const ExportArgs& a) {
   const bool to_stdout = a.output == "-";
   if (!to_stdout && !IsGltfPath(a.output)) {
-    return Usage(kCommand, a.output + ": the output must be .glb, .gltf or - (GLB on stdout)");
+    return Usage(kCommand,
+                 a.output + ": the output must be .glb or .gltf (or - for a GLB on stdout)");
   }
   std::string bytes;
   Character ch;

@@ -100,9 +100,35 @@ void ApplyDisplacementArgs(const FitArgs& a, DisplacementFitOptions* o) {
   if (a.consistency >= 0.0) o->adaptive.consistency = a.consistency;
 }
 
-nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
+/// The options a fit ran with, after the library's defaults for the input kind were applied,
+/// so that a report says how to repeat its run.
+nlohmann::ordered_json EffectiveOptionsJson(const FitOptions& f) {
+  nlohmann::ordered_json o;
+  o["control_vertices"] = f.control_vertices;
+  o["control_fit_iterations"] = f.control_fit_iterations;
+  o["holdout"] = f.holdout;
+  const DisplacementFitOptions& d = f.displacement;
+  o["displacement"] = d.method == DisplacementMethod::kMba ? "mba" : "adaptive";
+  o["levels"] = d.max_levels;
+  o["density"] = d.density;
+  o["finest_passes"] = d.finest_passes;
+  o["smoothing"] = d.smoothing;
+  o["node_weight"] = d.adaptive.min_node_weight;
+  o["level_smoothing"] = d.adaptive.smoothing;
+  o["validation"] = d.adaptive.validation;
+  o["min_improvement"] = d.adaptive.min_improvement;
+  o["residual"] = d.adaptive.residual_threshold;
+  o["budget"] = d.adaptive.max_coefficients_per_point;
+  o["consistency"] = d.adaptive.consistency;
+  return o;
+}
+
+nlohmann::ordered_json ReportJson(const FitArgs& a, const FitOptions& options,
+                                  const FitReport& r) {
   nlohmann::ordered_json j;
   j["schema"] = "dermis.fit/1";
+  j["dermis_version"] = DERMIS_VERSION;
+  j["options"] = EffectiveOptionsJson(options);
   j["input"] = a.input;
   j["output"] = a.output;
   j["points"] = r.points;
@@ -166,9 +192,13 @@ nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   return j;
 }
 
-Json CharacterReportJson(const FitArgs& a, const Character& ch, const CharacterFitReport& r) {
+Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, const Character& ch,
+                         const CharacterFitReport& r) {
   Json j;
   j["schema"] = "dermis.fit-character/1";
+  j["dermis_version"] = DERMIS_VERSION;
+  j["options"] = EffectiveOptionsJson(options.fit);
+  j["options"]["control_ratio"] = options.vertex_ratio;
   j["input"] = a.input;
   j["output"] = a.output;
   j["meshes"] = r.meshes;
@@ -237,7 +267,7 @@ int RunFitCharacter(const FitArgs& a) {
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
-    s = WriteFileAtomically(a.report, CharacterReportJson(a, ch, report).dump(2) + "\n");
+    s = WriteFileAtomically(a.report, CharacterReportJson(a, options, ch, report).dump(2) + "\n");
     if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet) {
@@ -311,7 +341,7 @@ int RunFit(const FitArgs& a) {
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
-    s = WriteFileAtomically(a.report, ReportJson(a, report).dump(2) + "\n");
+    s = WriteFileAtomically(a.report, ReportJson(a, options, report).dump(2) + "\n");
     if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet && !report.control_mesh.fallback.empty()) {
