@@ -156,7 +156,11 @@ TEST_CASE(
       options.quantize = quantize;
       options.compress = compress;
       GltfExportReport report;
+      // Kept short for CI: .gltf output and three.js for the combination users ship
+      // (quantize + compress); each alone is validated and read back by our importer.
+      const bool both = quantize && compress;
       for (const char* ext : {".glb", ".gltf"}) {
+        if (!both && std::string(ext) == ".gltf") continue;
         const std::string file = tmp.File(std::string("packed") + ext);
         s = ExportGltf(asset, options, file, &report);
         INFO(s.message());
@@ -183,7 +187,7 @@ TEST_CASE(
         INFO(s.message());
         REQUIRE(s.ok());
         CheckSameDrawing(plain, back, report);
-        if (std::string(ext) == ".glb") CheckThreeMatchesOurPoses(file, back, tmp);
+        if (both && std::string(ext) == ".glb") CheckThreeMatchesOurPoses(file, back, tmp);
       }
       std::string bytes;
       REQUIRE(SerializeGltf(asset, options, true, &bytes).ok());
