@@ -113,6 +113,26 @@ void CheckBake(const std::string& name) {
       INFO(test::Messages(packed_validation));
       CHECK(packed_validation.errors == 0);
       CHECK(packed_validation.warning_codes.empty());
+      // Our importer decodes it (meshopt, and the EXPONENTIAL filter of float normal deltas):
+      // the morph normal deltas within the snorm16 step or the filter's reported error.
+      Asset packed_back;
+      s = ImportGltf(packed_file, &packed_back);
+      INFO(s.message());
+      REQUIRE(s.ok());
+      const AssetPrimitive& a = baked.meshes[0].primitives[0];
+      const AssetPrimitive& b = packed_back.meshes[0].primitives[0];
+      REQUIRE(a.targets.size() == b.targets.size());
+      double worst_normal = 0.0;
+      for (std::size_t k = 0; k < a.targets.size(); ++k) {
+        REQUIRE(a.targets[k].normals.size() == b.targets[k].normals.size());
+        for (std::size_t v = 0; v < a.targets[k].normals.size(); ++v) {
+          const glm::vec3 d = a.targets[k].normals[v] - b.targets[k].normals[v];
+          worst_normal = std::max(
+              worst_normal,
+              static_cast<double>(std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)})));
+        }
+      }
+      CHECK(worst_normal <= std::max(0.5 / 32767.0, packed.max_filtered_target_error) + 1e-6);
     }
     Asset back;
     s = ImportGltf(file, &back);
