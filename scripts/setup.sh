@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 # Vulkan drivers (lavapipe runs the shaders on the CPU where there is no GPU) and the Khronos
 # validation layer the tests run under.
 packages=(build-essential cmake libeigen3-dev libglm-dev catch2 libcli11-dev libmeshoptimizer-dev
-          nlohmann-json3-dev libtinygltf-dev libassimp-dev pkg-config libosd-dev
+          nlohmann-json3-dev libtinygltf-dev libassimp-dev libdraco-dev pkg-config libosd-dev
           libstb-dev liblemon-dev libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers)
 missing=()
 for p in "${packages[@]}"; do

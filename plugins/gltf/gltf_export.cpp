@@ -29,6 +29,8 @@
 #include "dermis/core/file_io.h"
 #include "dermis/core/path.h"
 #include "dermis/plugins/gltf.h"
+#include "gltf_meshopt_encode.h"
+#include "gltf_quantize.h"
 
 namespace dermis {
 namespace {
@@ -36,6 +38,10 @@ namespace {
 constexpr int kArrayBuffer = TINYGLTF_TARGET_ARRAY_BUFFER;
 constexpr int kElementArrayBuffer = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
 constexpr int kNoTarget = 0;
+
+/// Mantissa bits of the EXPONENTIAL filter for the float morph normals of a quantised and
+/// compressed export: a relative error of 2^-15 of the largest component of the delta.
+constexpr int kExponentialFilterBits = 16;
 
 /// Tolerance on the last row of an inverse bind matrix before it is forced to (0, 0, 0, 1).
 constexpr float kIbmLastRowTolerance = 1e-6f;
@@ -47,8 +53,8 @@ std::string Pointer(const char* array, std::size_t index) {
 /// Builds the tinygltf model and its single binary buffer.
 class ModelBuilder {
  public:
-  ModelBuilder(const Asset& asset, const GltfExportOptions& options)
-      : asset_(asset), options_(options) {}
+  ModelBuilder(const Asset& asset, const GltfExportOptions& options, GltfExportReport* report)
+      : asset_(asset), options_(options), report_(*report) {}
 
   Status Build();
   tinygltf::Model& model() { return model_; }
@@ -65,10 +71,21 @@ class ModelBuilder {
   int AddFloatAccessor(const std::vector<float>& values, int type, int components, int target,
                        bool bounds);
   int AddAccessor(int view, int component_type, int type, std::size_t count);
+  /// KHR_mesh_quantization accessors (docs/gltf-compression.md): positions on the grid, morph
+  /// position deltas in grid steps, signed / unsigned normalised shorts. Element data is padded
+  /// to 4 bytes (VEC3 of shorts: byteStride 8).
+  int AddGridPositions(const std::vector<glm::vec3>& positions);
+  int AddGridDeltas(const std::vector<glm::vec3>& base, const std::vector<glm::vec3>& deltas);
+  int AddNormalized16(const std::vector<float>& values, int components, bool is_signed,
+                      bool bounds);
+  /// Normals (unit, or morph deltas) as snorm16 if every value is in [-1, 1], else float32.
+  int AddUnitOrDelta(const std::vector<float>& values, bool unit);
 
   Status AddMaterials();
   void AddTexturesAndImages(Status* status);
   void AddNodesAndScenes();
+  /// The matrix taking grid coordinates to model positions (uniform scale, then translation).
+  glm::dmat4 Dequantization() const;
   Status AddMeshes();
   Status AddPrimitive(std::size_t mesh_index, std::size_t primitive_index,
                       tinygltf::Primitive* out);
@@ -79,10 +96,14 @@ class ModelBuilder {
 
   const Asset& asset_;
   const GltfExportOptions& options_;
+  GltfExportReport& report_;
+  gltf_quantize::PositionGrid grid_;
   tinygltf::Model model_;
   std::vector<unsigned char> bin_;
   std::set<std::string> extensions_used_;
   bool joints_u8_ = true;
+  /// With quantize: the node that now holds the mesh (and morph weights) of node i, or -1.
+  std::vector<int> mesh_child_;
 };
 
 int ModelBuilder::AddView(const void* data, std::size_t size, int target) {
@@ -96,6 +117,132 @@ int ModelBuilder::AddView(const void* data, std::size_t size, int target) {
   bin_.insert(bin_.end(), bytes, bytes + size);
   model_.bufferViews.push_back(std::move(view));
   return static_cast<int>(model_.bufferViews.size() - 1);
+}
+
+int ModelBuilder::AddGridPositions(const std::vector<glm::vec3>& positions) {
+  const std::size_t n = positions.size();
+  std::vector<std::uint16_t> data(4 * n, 0);
+  std::uint16_t lo[3] = {65535, 65535, 65535}, hi[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::u16vec3 q = gltf_quantize::Quantize(grid_, positions[i]);
+    for (int c = 0; c < 3; ++c) {
+      data[4 * i + static_cast<std::size_t>(c)] = q[c];
+      lo[c] = std::min(lo[c], q[c]);
+      hi[c] = std::max(hi[c], q[c]);
+    }
+    const double error =
+        glm::distance(gltf_quantize::Dequantize(grid_, glm::ivec3(q)), glm::dvec3(positions[i]));
+    report_.max_position_error = std::max(report_.max_position_error, error);
+  }
+  const int view = AddView(data.data(), data.size() * sizeof(std::uint16_t), kArrayBuffer);
+  model_.bufferViews[static_cast<std::size_t>(view)].byteStride = 8;
+  const int index =
+      AddAccessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC3, n);
+  tinygltf::Accessor& accessor = model_.accessors[static_cast<std::size_t>(index)];
+  accessor.minValues = {static_cast<double>(lo[0]), static_cast<double>(lo[1]),
+                        static_cast<double>(lo[2])};
+  accessor.maxValues = {static_cast<double>(hi[0]), static_cast<double>(hi[1]),
+                        static_cast<double>(hi[2])};
+  return index;
+}
+
+int ModelBuilder::AddGridDeltas(const std::vector<glm::vec3>& base,
+                                const std::vector<glm::vec3>& deltas) {
+  // The delta of the grid coordinates of the morphed and the base position: the morphed
+  // position is then rounded to the grid exactly as a base position is.
+  const std::size_t n = deltas.size();
+  std::vector<std::int16_t> data(4 * n, 0);
+  int lo[3] = {32767, 32767, 32767}, hi[3] = {-32767, -32767, -32767};
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::vec3 morphed = base[i] + deltas[i];
+    const glm::ivec3 qb(gltf_quantize::Quantize(grid_, base[i]));
+    const glm::ivec3 qm(gltf_quantize::Quantize(grid_, morphed));
+    for (int c = 0; c < 3; ++c) {
+      const int d = qm[c] - qb[c];  // |d| <= 2^15 - 1: the grid has at most 15 bits here
+      data[4 * i + static_cast<std::size_t>(c)] = static_cast<std::int16_t>(d);
+      lo[c] = std::min(lo[c], d);
+      hi[c] = std::max(hi[c], d);
+    }
+    const double error = glm::distance(gltf_quantize::Dequantize(grid_, qm), glm::dvec3(morphed));
+    report_.max_position_error = std::max(report_.max_position_error, error);
+  }
+  const int view = AddView(data.data(), data.size() * sizeof(std::int16_t), kArrayBuffer);
+  model_.bufferViews[static_cast<std::size_t>(view)].byteStride = 8;
+  const int index = AddAccessor(view, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, n);
+  if (n > 0) {
+    tinygltf::Accessor& accessor = model_.accessors[static_cast<std::size_t>(index)];
+    accessor.minValues = {static_cast<double>(lo[0]), static_cast<double>(lo[1]),
+                          static_cast<double>(lo[2])};
+    accessor.maxValues = {static_cast<double>(hi[0]), static_cast<double>(hi[1]),
+                          static_cast<double>(hi[2])};
+  }
+  return index;
+}
+
+int ModelBuilder::AddNormalized16(const std::vector<float>& values, int components, bool is_signed,
+                                  bool bounds) {
+  const std::size_t c = static_cast<std::size_t>(components);
+  const std::size_t n = values.size() / c;
+  const std::size_t padded = (c * 2 + 3) / 4 * 2;  // shorts per element, 4-byte aligned
+  std::vector<std::uint16_t> data(padded * n, 0);
+  std::vector<double> lo(c, 65535.0), hi(c, -65535.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < c; ++k) {
+      const float v = values[i * c + k];
+      double decoded;
+      if (is_signed) {
+        const std::int16_t q = gltf_quantize::Snorm16(v);
+        std::memcpy(&data[i * padded + k], &q, sizeof q);
+        decoded = std::max(q / 32767.0, -1.0);
+      } else {
+        const std::uint16_t q = gltf_quantize::Unorm16(v);
+        data[i * padded + k] = q;
+        decoded = q / 65535.0;
+      }
+      lo[k] = std::min(lo[k], decoded);
+      hi[k] = std::max(hi[k], decoded);
+    }
+  }
+  const int view = AddView(data.data(), data.size() * sizeof(std::uint16_t), kArrayBuffer);
+  if (padded != c) {
+    model_.bufferViews[static_cast<std::size_t>(view)].byteStride =
+        static_cast<int>(padded * sizeof(std::uint16_t));
+  }
+  const int type = c == 2 ? TINYGLTF_TYPE_VEC2 : c == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+  const int index = AddAccessor(
+      view, is_signed ? TINYGLTF_COMPONENT_TYPE_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+      type, n);
+  tinygltf::Accessor& accessor = model_.accessors[static_cast<std::size_t>(index)];
+  accessor.normalized = true;
+  if (bounds && n > 0) {
+    accessor.minValues = lo;
+    accessor.maxValues = hi;
+  }
+  return index;
+}
+
+int ModelBuilder::AddUnitOrDelta(const std::vector<float>& values, bool unit) {
+  bool in_range = true;
+  for (const float v : values) in_range = in_range && v >= -1.0f && v <= 1.0f;
+  if (!in_range) {
+    ++report_.float_target_accessors;
+    return AddFloatAccessor(values, TINYGLTF_TYPE_VEC3, 3, kArrayBuffer, false);
+  }
+  const int index = AddNormalized16(values, 3, /*is_signed=*/true, false);
+  if (unit) {
+    for (std::size_t i = 0; i + 2 < values.size(); i += 3) {
+      glm::dvec3 q;
+      for (int c = 0; c < 3; ++c) {
+        q[c] = std::max(gltf_quantize::Snorm16(values[i + static_cast<std::size_t>(c)]) / 32767.0,
+                        -1.0);
+      }
+      const glm::dvec3 v(values[i], values[i + 1], values[i + 2]);
+      const double cosine = glm::dot(glm::normalize(q), glm::normalize(v));
+      const double degrees = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / 3.14159265358979;
+      report_.max_normal_error_degrees = std::max(report_.max_normal_error_degrees, degrees);
+    }
+  }
+  return index;
 }
 
 int ModelBuilder::AddAccessor(int view, int component_type, int type, std::size_t count) {
@@ -295,6 +442,32 @@ void ModelBuilder::AddNodesAndScenes() {
     model_.scenes.push_back(std::move(scene));
   }
   model_.defaultScene = static_cast<int>(asset_.default_scene);
+  if (!options_.quantize) return;
+  // An unskinned mesh moves to a new child node whose matrix is the dequantising transform
+  // (the node's own transform, animation and children stay as they were).
+  const glm::dmat4 d = Dequantization();
+  mesh_child_.assign(asset_.nodes.size(), -1);
+  for (std::size_t i = 0; i < asset_.nodes.size(); ++i) {
+    if (model_.nodes[i].mesh < 0 || model_.nodes[i].skin >= 0) continue;
+    tinygltf::Node child;
+    child.name = model_.nodes[i].name;
+    child.mesh = model_.nodes[i].mesh;
+    child.weights = std::move(model_.nodes[i].weights);
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) child.matrix.push_back(d[c][r]);
+    }
+    model_.nodes[i].mesh = -1;
+    model_.nodes[i].weights.clear();
+    mesh_child_[i] = static_cast<int>(model_.nodes.size());
+    model_.nodes[i].children.push_back(mesh_child_[i]);
+    model_.nodes.push_back(std::move(child));
+  }
+}
+
+glm::dmat4 ModelBuilder::Dequantization() const {
+  glm::dmat4 d(grid_.step);
+  d[3] = glm::dvec4(grid_.origin, 1.0);
+  return d;
 }
 
 Status ModelBuilder::AddMeshes() {
@@ -336,8 +509,11 @@ Status ModelBuilder::AddPrimitive(std::size_t mesh_index, std::size_t primitive_
   if (n == 0) return Fail(pointer, "primitive has no vertices");
   out->mode = static_cast<int>(primitive.mode);
   out->material = static_cast<int>(primitive.material);
-  out->attributes["POSITION"] = AddFloatAccessor(Flatten(primitive.positions), TINYGLTF_TYPE_VEC3,
-                                                 3, kArrayBuffer, /*bounds=*/true);
+  const bool q = options_.quantize;
+  out->attributes["POSITION"] =
+      q ? AddGridPositions(primitive.positions)
+        : AddFloatAccessor(Flatten(primitive.positions), TINYGLTF_TYPE_VEC3, 3, kArrayBuffer,
+                           /*bounds=*/true);
   if (!primitive.normals.empty()) {
     std::vector<float> normals = Flatten(primitive.normals);
     for (std::size_t i = 0; i < n; ++i) {
@@ -349,7 +525,8 @@ Status ModelBuilder::AddPrimitive(std::size_t mesh_index, std::size_t primitive_
       }
     }
     out->attributes["NORMAL"] =
-        AddFloatAccessor(normals, TINYGLTF_TYPE_VEC3, 3, kArrayBuffer, false);
+        q ? AddUnitOrDelta(normals, /*unit=*/true)
+          : AddFloatAccessor(normals, TINYGLTF_TYPE_VEC3, 3, kArrayBuffer, false);
   }
   if (!primitive.tangents.empty()) {
     std::vector<float> tangents = Flatten(primitive.tangents);
@@ -363,15 +540,33 @@ Status ModelBuilder::AddPrimitive(std::size_t mesh_index, std::size_t primitive_
       v[3] = v[3] < 0.0f ? -1.0f : 1.0f;
     }
     out->attributes["TANGENT"] =
-        AddFloatAccessor(tangents, TINYGLTF_TYPE_VEC4, 4, kArrayBuffer, false);
+        q ? AddNormalized16(tangents, 4, /*is_signed=*/true, false)
+          : AddFloatAccessor(tangents, TINYGLTF_TYPE_VEC4, 4, kArrayBuffer, false);
   }
+  // Texture coordinates and colours in [0, 1] as normalised u16 (others stay float32: a
+  // KHR_texture_transform remap would change the material).
+  auto unit_range = [](const std::vector<float>& v) {
+    return std::all_of(v.begin(), v.end(), [](float x) { return x >= 0.0f && x <= 1.0f; });
+  };
   for (std::size_t s = 0; s < primitive.texcoords.size(); ++s) {
-    out->attributes["TEXCOORD_" + std::to_string(s)] = AddFloatAccessor(
-        Flatten(primitive.texcoords[s]), TINYGLTF_TYPE_VEC2, 2, kArrayBuffer, false);
+    const std::vector<float> uv = Flatten(primitive.texcoords[s]);
+    if (q && unit_range(uv)) {
+      for (const float x : uv) {
+        const double e = std::fabs(gltf_quantize::Unorm16(x) / 65535.0 - static_cast<double>(x));
+        report_.max_texcoord_error = std::max(report_.max_texcoord_error, e);
+      }
+      out->attributes["TEXCOORD_" + std::to_string(s)] =
+          AddNormalized16(uv, 2, /*is_signed=*/false, false);
+    } else {
+      out->attributes["TEXCOORD_" + std::to_string(s)] =
+          AddFloatAccessor(uv, TINYGLTF_TYPE_VEC2, 2, kArrayBuffer, false);
+    }
   }
   for (std::size_t s = 0; s < primitive.colors.size(); ++s) {
+    const std::vector<float> rgba = Flatten(primitive.colors[s]);
     out->attributes["COLOR_" + std::to_string(s)] =
-        AddFloatAccessor(Flatten(primitive.colors[s]), TINYGLTF_TYPE_VEC4, 4, kArrayBuffer, false);
+        q && unit_range(rgba) ? AddNormalized16(rgba, 4, /*is_signed=*/false, false)
+                              : AddFloatAccessor(rgba, TINYGLTF_TYPE_VEC4, 4, kArrayBuffer, false);
   }
   const Status skin_status = AddSkinAttributes(primitive, pointer, out);
   if (!skin_status.ok()) return skin_status;
@@ -398,16 +593,21 @@ Status ModelBuilder::AddPrimitive(std::size_t mesh_index, std::size_t primitive_
   for (const AssetMorphTarget& target : primitive.targets) {
     std::map<std::string, int> attributes;
     if (!target.positions.empty()) {
-      attributes["POSITION"] = AddFloatAccessor(Flatten(target.positions), TINYGLTF_TYPE_VEC3, 3,
-                                                kArrayBuffer, /*bounds=*/true);
+      attributes["POSITION"] =
+          q && target.positions.size() == n
+              ? AddGridDeltas(primitive.positions, target.positions)
+              : AddFloatAccessor(Flatten(target.positions), TINYGLTF_TYPE_VEC3, 3, kArrayBuffer,
+                                 /*bounds=*/true);
     }
     if (!target.normals.empty()) {
       attributes["NORMAL"] =
-          AddFloatAccessor(Flatten(target.normals), TINYGLTF_TYPE_VEC3, 3, kArrayBuffer, false);
+          q ? AddUnitOrDelta(Flatten(target.normals), /*unit=*/false)
+            : AddFloatAccessor(Flatten(target.normals), TINYGLTF_TYPE_VEC3, 3, kArrayBuffer, false);
     }
     if (!target.tangents.empty()) {
-      attributes["TANGENT"] =
-          AddFloatAccessor(Flatten(target.tangents), TINYGLTF_TYPE_VEC3, 3, kArrayBuffer, false);
+      attributes["TANGENT"] = q ? AddUnitOrDelta(Flatten(target.tangents), /*unit=*/false)
+                                : AddFloatAccessor(Flatten(target.tangents), TINYGLTF_TYPE_VEC3, 3,
+                                                   kArrayBuffer, false);
     }
     out->targets.push_back(std::move(attributes));
   }
@@ -480,6 +680,11 @@ Status ModelBuilder::AddSkinAttributes(const AssetPrimitive& primitive, const st
   std::vector<std::vector<std::uint16_t>> joints(sets, std::vector<std::uint16_t>(4 * n, 0));
   std::vector<std::vector<float>> weights(sets, std::vector<float>(4 * n, 0.0f));
   std::vector<float> slots(4 * sets);
+  std::vector<std::uint16_t> qslots(4 * sets);
+  std::vector<std::vector<std::uint16_t>> quantized_weights;
+  if (options_.quantize) {
+    quantized_weights.assign(sets, std::vector<std::uint16_t>(4 * n, 0));
+  }
   for (std::size_t v = 0; v < n; ++v) {
     const std::vector<Influence>& inf = kept[v];
     double total = 0.0;
@@ -503,6 +708,19 @@ Status ModelBuilder::AddSkinAttributes(const AssetPrimitive& primitive, const st
       return Status::Internal(Source() + ": " + pointer + ": weights of vertex " +
                               std::to_string(v) + " cannot be normalised in float32");
     }
+    if (options_.quantize) {
+      // Normalised u16 summing to exactly 65535; a weight rounded to 0 pads with joint 0.
+      gltf_quantize::QuantizeWeights(slots.data(), slots.size(), qslots.data());
+      for (std::size_t k = 0; k < slots.size(); ++k) {
+        const double e = std::fabs(qslots[k] / 65535.0 - static_cast<double>(slots[k]));
+        report_.max_weight_error = std::max(report_.max_weight_error, e);
+        quantized_weights[k / 4][4 * v + k % 4] = qslots[k];
+        if (k < inf.size() && qslots[k] != 0) {
+          joints[k / 4][4 * v + k % 4] = static_cast<std::uint16_t>(inf[k].joint);
+        }
+      }
+      continue;
+    }
     for (std::size_t k = 0; k < inf.size(); ++k) {
       if (slots[k] == 0.0f) continue;  // underflowed: pad with joint 0 instead
       joints[k / 4][4 * v + k % 4] = static_cast<std::uint16_t>(inf[k].joint);
@@ -522,15 +740,67 @@ Status ModelBuilder::AddSkinAttributes(const AssetPrimitive& primitive, const st
         view,
         joints_u8_ ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE : TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
         TINYGLTF_TYPE_VEC4, n);
-    out->attributes["WEIGHTS_" + std::to_string(s)] =
-        AddFloatAccessor(weights[s], TINYGLTF_TYPE_VEC4, 4, kArrayBuffer, false);
+    if (options_.quantize) {
+      std::vector<std::uint16_t> q(4 * n);
+      for (std::size_t i = 0; i < 4 * n; ++i) q[i] = quantized_weights[s][i];
+      const int wview = AddView(q.data(), q.size() * sizeof(std::uint16_t), kArrayBuffer);
+      const int index =
+          AddAccessor(wview, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, n);
+      model_.accessors[static_cast<std::size_t>(index)].normalized = true;
+      out->attributes["WEIGHTS_" + std::to_string(s)] = index;
+    } else {
+      out->attributes["WEIGHTS_" + std::to_string(s)] =
+          AddFloatAccessor(weights[s], TINYGLTF_TYPE_VEC4, 4, kArrayBuffer, false);
+    }
   }
   return Status::Ok();
 }
 
 Status ModelBuilder::AddSkins() {
+  // With quantize, the skins of skinned mesh nodes take the dequantising transform into their
+  // inverse bind matrices: joint * IBM * D * q = joint * IBM * p (the skinned mesh's node
+  // transform is ignored by glTF, so it cannot hold it).
+  std::vector<bool> dequantize(asset_.skins.size(), false);
+  if (options_.quantize) {
+    for (const AssetNode& n : asset_.nodes) {
+      if (n.mesh >= 0 && n.skin >= 0 && static_cast<std::size_t>(n.skin) < dequantize.size()) {
+        dequantize[static_cast<std::size_t>(n.skin)] = true;
+      }
+    }
+  }
+  const glm::dmat4 d = Dequantization();
   for (std::size_t i = 0; i < asset_.skins.size(); ++i) {
     const AssetSkin& skin = asset_.skins[i];
+    if (dequantize[i] && skin.has_inverse_bind_matrices &&
+        skin.inverse_bind_matrices.size() != skin.joints.size()) {
+      return Fail(Pointer("skins", i), "inverse bind matrix count differs from joint count");
+    }
+    if (dequantize[i]) {
+      std::vector<float> values;
+      values.reserve(16 * skin.joints.size());
+      for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+        const glm::dmat4 ibm = skin.has_inverse_bind_matrices
+                                   ? glm::dmat4(skin.inverse_bind_matrices[j])
+                                   : glm::dmat4(1.0);
+        const glm::dmat4 m = ibm * d;
+        for (int c = 0; c < 4; ++c) {
+          const double expected = c == 3 ? 1.0 : 0.0;
+          if (!(std::fabs(m[c][3] - expected) <= kIbmLastRowTolerance)) {
+            return Fail(Pointer("skins", i) + "/inverseBindMatrices/" + std::to_string(j),
+                        "last row is not (0, 0, 0, 1)");
+          }
+          values.insert(values.end(), {static_cast<float>(m[c][0]), static_cast<float>(m[c][1]),
+                                       static_cast<float>(m[c][2]), static_cast<float>(expected)});
+        }
+      }
+      tinygltf::Skin out;
+      out.name = skin.name;
+      for (const Index joint : skin.joints) out.joints.push_back(static_cast<int>(joint));
+      out.skeleton = static_cast<int>(skin.skeleton);
+      out.inverseBindMatrices = AddFloatAccessor(values, TINYGLTF_TYPE_MAT4, 16, kNoTarget, false);
+      model_.skins.push_back(std::move(out));
+      continue;
+    }
     tinygltf::Skin out;
     out.name = skin.name;
     for (const Index joint : skin.joints) out.joints.push_back(static_cast<int>(joint));
@@ -641,6 +911,11 @@ Status ModelBuilder::AddAnimations() {
       tinygltf::AnimationChannel out_channel;
       out_channel.sampler = static_cast<int>(channel.sampler);
       out_channel.target_node = static_cast<int>(channel.node);
+      if (channel.path == AnimationPath::kWeights && channel.node >= 0 &&
+          static_cast<std::size_t>(channel.node) < mesh_child_.size() &&
+          mesh_child_[static_cast<std::size_t>(channel.node)] >= 0) {
+        out_channel.target_node = mesh_child_[static_cast<std::size_t>(channel.node)];
+      }
       out_channel.target_path = PathName(channel.path);
       out.channels.push_back(std::move(out_channel));
     }
@@ -654,6 +929,13 @@ Status ModelBuilder::Build() {
   model_.asset.generator = options_.generator;
   model_.asset.copyright = asset_.copyright;
 
+  if (options_.quantize) {
+    grid_ = gltf_quantize::ChoosePositionGrid(asset_);
+    report_.quantized = true;
+    report_.position_bits = grid_.bits;
+    report_.position_step = grid_.step;
+    extensions_used_.insert("KHR_mesh_quantization");
+  }
   Status status = AddMaterials();
   if (!status.ok()) return status;
   AddTexturesAndImages(&status);
@@ -674,6 +956,7 @@ Status ModelBuilder::Build() {
     extensions_used_.insert(kDsurfGltfExtension);
   }
   model_.extensionsUsed.assign(extensions_used_.begin(), extensions_used_.end());
+  if (options_.quantize) model_.extensionsRequired.push_back("KHR_mesh_quantization");
 
   if (!bin_.empty()) {
     while (bin_.size() % 4 != 0) bin_.push_back(0);
@@ -698,8 +981,11 @@ std::uint32_t ReadU32(const std::string& bytes, std::size_t offset) {
 }  // namespace
 
 Status SerializeGltf(const Asset& asset, const GltfExportOptions& options, bool binary,
-                     std::string* bytes) {
+                     std::string* bytes, GltfExportReport* report) {
   bytes->clear();
+  GltfExportReport local_report;
+  if (report == nullptr) report = &local_report;
+  *report = GltfExportReport();
   const std::string source = asset.source.empty() ? "<asset>" : asset.source;
   const Status valid = ValidateAsset(asset);
   if (!valid.ok()) {
@@ -708,15 +994,34 @@ Status SerializeGltf(const Asset& asset, const GltfExportOptions& options, bool 
     return valid.WithContext(source);
   }
   try {
-    ModelBuilder builder(asset, options);
+    ModelBuilder builder(asset, options, report);
     const Status status = builder.Build();
     if (!status.ok()) return status;
     tinygltf::TinyGLTF writer;
     std::ostringstream stream;
     // The return value is always true (tinygltf #365): check the stream and the bytes.
-    writer.WriteGltfSceneToStream(&builder.model(), stream, /*prettyPrint=*/!binary, binary);
+    // Compression rewrites a GLB (tinygltf cannot write a buffer without data), then turns
+    // it into a .gltf if asked.
+    const bool glb = binary || options.compress;
+    writer.WriteGltfSceneToStream(&builder.model(), stream, /*prettyPrint=*/!glb, glb);
     if (!stream) return Status::Internal(source + ": writing the glTF stream failed");
     *bytes = stream.str();
+    if (options.compress) {
+      std::string packed;
+      gltf_meshopt::CompressStats stats;
+      const Status s = gltf_meshopt::CompressGlb(
+          *bytes, binary, options.quantize ? kExponentialFilterBits : 0, &packed, &stats);
+      report->bytes_before_compression = stats.before;
+      report->bytes_after_compression = stats.after;
+      report->filtered_target_accessors = stats.filtered_views;
+      report->max_filtered_target_error = stats.max_filter_error;
+      if (!s.ok()) {
+        bytes->clear();
+        return s.WithContext(source);
+      }
+      report->compressed = true;
+      *bytes = std::move(packed);
+    }
   } catch (const std::exception& e) {
     bytes->clear();
     return Status::InvalidInput(source + ": glTF serialisation failed: " + e.what());
@@ -734,7 +1039,8 @@ Status SerializeGltf(const Asset& asset, const GltfExportOptions& options, bool 
   return Status::Ok();
 }
 
-Status ExportGltf(const Asset& asset, const GltfExportOptions& options, const std::string& path) {
+Status ExportGltf(const Asset& asset, const GltfExportOptions& options, const std::string& path,
+                  GltfExportReport* report) {
   const std::string ext = LowerExtension(path);
   bool binary;
   if (ext == ".glb") {
@@ -745,7 +1051,7 @@ Status ExportGltf(const Asset& asset, const GltfExportOptions& options, const st
     return Status::Unsupported(path + ": unknown glTF file extension (use .glb or .gltf)");
   }
   std::string bytes;
-  const Status status = SerializeGltf(asset, options, binary, &bytes);
+  const Status status = SerializeGltf(asset, options, binary, &bytes, report);
   if (!status.ok()) return status;
   return WriteFileAtomically(path, bytes);
 }

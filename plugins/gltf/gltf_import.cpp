@@ -20,6 +20,8 @@
 
 #include "dermis/asset/asset_validate.h"
 #include "dermis/plugins/gltf.h"
+#include "gltf_decompress.h"
+#include "gltf_glb.h"
 
 namespace dermis {
 namespace {
@@ -434,7 +436,7 @@ Status GltfImporter::Load() {
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) return Status::IoError(path_ + ": read error");
-  const std::string bytes = ss.str();
+  std::string bytes = ss.str();
   if (bytes.size() > std::numeric_limits<std::uint32_t>::max()) {
     return FailFile("file larger than 4 GiB", StatusCode::kUnsupported);
   }
@@ -444,7 +446,7 @@ Status GltfImporter::Load() {
 
   const bool ends_glb = path_.size() >= 4 && (path_.compare(path_.size() - 4, 4, ".glb") == 0 ||
                                               path_.compare(path_.size() - 4, 4, ".GLB") == 0);
-  const bool binary = bytes.size() >= 4 && ReadU32(bytes, 0) == kGlbMagic;
+  bool binary = bytes.size() >= 4 && ReadU32(bytes, 0) == kGlbMagic;
   std::string json_text;
   if (binary || ends_glb) {
     Status s = CheckGlbHeader(bytes, &json_text);
@@ -456,6 +458,22 @@ Status GltfImporter::Load() {
     doc_ = Json::parse(json_text);
   } catch (const Json::exception& e) {
     return FailFile(std::string("invalid JSON: ") + e.what());
+  }
+  // Compressed files (EXT_meshopt_compression, KHR_draco_mesh_compression) are first decoded
+  // into a plain GLB in memory (gltf_decompress.cpp), then read like any other.
+  if (doc_.is_object() && gltf_decompress::UsesCompression(doc_)) {
+    std::string json_chunk, bin_chunk, plain;
+    if (binary) {
+      Status split = gltf_glb::Split(bytes, &json_chunk, &bin_chunk);
+      if (!split.ok()) return FailFile(split.message());
+    }
+    Status decoded = gltf_decompress::Decompress(doc_, bin_chunk, base_dir_, &plain);
+    if (!decoded.ok()) return FailFile(decoded.message(), decoded.code());
+    bytes = std::move(plain);
+    binary = true;
+    json_text = bytes.substr(20, ReadU32(bytes, 12));
+    doc_ = Json::parse(json_text, nullptr, false);
+    if (doc_.is_discarded()) return FailFile("decompressed JSON does not parse");
   }
   Status s = CheckDocument();
   if (!s.ok()) return s;

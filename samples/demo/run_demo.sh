@@ -11,6 +11,8 @@
 #   creature.dsurf            the fitted character, creature_fit.json its error report
 #   creature_skinned.glb      skinned glTF of the displaced surface (any glTF viewer animates it)
 #   creature_sweep.glb        the sweep deformer's motion baked into morph targets
+#   creature_sweep_web.glb    the same, --quantize --compress (three.js with its meshopt
+#                             decoder, Babylon.js, gltfpack; docs/gltf-compression.md)
 #   frames/sweep_NNN.png      frames of the clip with the sweep deformer (frames/sweep.png: all)
 #   frames/lbs_NNN.png        the same frames with linear blend skinning
 #   sweep_vs_lbs.png          both as one contact sheet (top row sweep, bottom row LBS)
@@ -36,6 +38,12 @@ mkdir -p "$out/frames"
 "$dermis" fit "$out/creature.glb" -o "$out/creature.dsurf" --report "$out/creature_fit.json" -q --force
 "$dermis" export "$out/creature.dsurf" -o "$out/creature_skinned.glb" -q --force
 "$dermis" export "$out/creature.dsurf" -o "$out/creature_sweep.glb" --bake-sweep --fps 15 -q --force
+"$dermis" export "$out/creature.dsurf" -o "$out/creature_sweep_web.glb" --bake-sweep --fps 15 \
+  --quantize --compress -q --force
+plain=$(stat -c %s "$out/creature_sweep.glb")
+web=$(stat -c %s "$out/creature_sweep_web.glb")
+echo "demo: sweep bake $plain bytes, --quantize --compress $web bytes ($((100 * web / plain)) %)"
+(( 100 * web <= 40 * plain )) || { echo "demo: the compressed bake is over 40 % of the plain one" >&2; exit 1; }
 for deformer in sweep lbs; do
   "$dermis" render "$out/creature.dsurf" -o "$out/frames/$deformer.png" --deformer "$deformer" \
     --frames "$frames" --columns "$frames" --frame-files --size "$size" --azimuth 0 \
@@ -47,6 +55,7 @@ done
 "$dermis" render "$out/creature.dsurf" -o "$out/fit_error.png" --heatmap error --size "$size" \
   --clip rest --force -q
 for f in creature.glb creature.dsurf creature_fit.json creature_skinned.glb creature_sweep.glb \
+         creature_sweep_web.glb \
          sweep_vs_lbs.png fit_error.png frames/sweep_000.png frames/lbs_000.png; do
   [[ -s "$out/$f" ]] || { echo "demo: $out/$f was not written" >&2; exit 1; }
 done

@@ -3,7 +3,8 @@
 // Poses a .glb with three.js (GLTFLoader + AnimationMixer) in plain Node and writes the
 // world-space vertex positions of every mesh primitive as three.js computes them.
 //   node tests/js/three_pose.js FILE.glb OUT.json [--clip I] [--time T]
-// (an embedded .gltf, buffers as data: URIs, works too; external files do not).
+// (an embedded .gltf, buffers as data: URIs, works too; external files do not). Files with
+// KHR_mesh_quantization and EXT_meshopt_compression are read with three's meshopt decoder.
 // Without --clip the rest pose is written. The clip plays once and is clamped at its end
 // (LoopOnce + clampWhenFinished), so --time past the end gives the last keyframe.
 // Output: {"meshes":[{"node":N,"mesh":M,"primitive":P,"positions":[x,y,z,...]}, ...]} sorted by
@@ -59,11 +60,14 @@ async function main() {
   const args = parseArgs(process.argv.slice(2));
   const THREE = await import('three');
   const {GLTFLoader} = await import('three/addons/loaders/GLTFLoader.js');
+  // EXT_meshopt_compression (dermis export --compress), as a web page would set it up.
+  const {MeshoptDecoder} = await import('three/addons/libs/meshopt_decoder.module.js');
 
   const bytes = fs.readFileSync(args.input);
   const buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
   const loader = new GLTFLoader();
   loader.register(noTexturesPlugin);
+  loader.setMeshoptDecoder(MeshoptDecoder);
   const gltf = await new Promise((resolve, reject) => loader.parse(buffer, '', resolve, reject));
 
   const root = gltf.scene;

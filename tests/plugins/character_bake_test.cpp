@@ -97,6 +97,43 @@ void CheckBake(const std::string& name) {
     INFO(test::Messages(validation));
     CHECK(validation.errors == 0);
     CHECK(validation.warnings == 0);
+    // The same bake with --quantize --compress (docs/gltf-compression.md): validator-clean,
+    // and three.js (with its meshopt decoder) draws it within the reported position error
+    // (the sweep's bake only, to keep the test short).
+    const bool check_packed = kind == DeformerKind::kSweep;
+    const std::string packed_file = tmp.File(std::string("packed_") + DeformerName(kind) + ".glb");
+    GltfExportOptions packed_options;
+    packed_options.quantize = packed_options.compress = true;
+    GltfExportReport packed;
+    if (check_packed) {
+      s = ExportGltf(baked, packed_options, packed_file, &packed);
+      INFO(s.message());
+      REQUIRE(s.ok());
+      const test::ValidatorReport packed_validation = test::Validate(packed_file, tmp);
+      INFO(test::Messages(packed_validation));
+      CHECK(packed_validation.errors == 0);
+      CHECK(packed_validation.warning_codes.empty());
+      // Our importer decodes it (meshopt, and the EXPONENTIAL filter of float normal deltas):
+      // the morph normal deltas within the snorm16 step or the filter's reported error.
+      Asset packed_back;
+      s = ImportGltf(packed_file, &packed_back);
+      INFO(s.message());
+      REQUIRE(s.ok());
+      const AssetPrimitive& a = baked.meshes[0].primitives[0];
+      const AssetPrimitive& b = packed_back.meshes[0].primitives[0];
+      REQUIRE(a.targets.size() == b.targets.size());
+      double worst_normal = 0.0;
+      for (std::size_t k = 0; k < a.targets.size(); ++k) {
+        REQUIRE(a.targets[k].normals.size() == b.targets[k].normals.size());
+        for (std::size_t v = 0; v < a.targets[k].normals.size(); ++v) {
+          const glm::vec3 d = a.targets[k].normals[v] - b.targets[k].normals[v];
+          worst_normal = std::max(
+              worst_normal,
+              static_cast<double>(std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)})));
+        }
+      }
+      CHECK(worst_normal <= std::max(0.5 / 32767.0, packed.max_filtered_target_error) + 1e-6);
+    }
     Asset back;
     s = ImportGltf(file, &back);
     INFO(s.message());
@@ -129,6 +166,24 @@ void CheckBake(const std::string& name) {
         CHECK(diagonal > 0.0);
         CHECK(worst < 1e-5 * diagonal);
         worst_relative = std::max(worst_relative, worst / diagonal);
+        if (check_packed) {
+          // The quantised file draws each mesh from a child node holding the dequantising
+          // matrix (appended after the asset's nodes, in node order): key it by the parent.
+          std::map<std::pair<int, int>, std::vector<double>> three_packed;
+          std::map<int, int> parent_of;
+          for (std::size_t n = 0, child = baked.nodes.size(); n < baked.nodes.size(); ++n) {
+            if (baked.nodes[n].mesh >= 0 && baked.nodes[n].skin < 0) {
+              parent_of[static_cast<int>(child++)] = static_cast<int>(n);
+            }
+          }
+          for (auto& [key, positions] : test::ThreePose(packed_file, clip, t, tmp)) {
+            auto it = parent_of.find(key.first);
+            three_packed[{it == parent_of.end() ? key.first : it->second, key.second}] =
+                std::move(positions);
+          }
+          const double packed_worst = BakeDifference(poser, posed, three_packed, &diagonal);
+          CHECK(packed_worst < 1e-5 * diagonal + packed.max_position_error);
+        }
       }
     }
     // What `dermis animate -o POSED.glb` writes: the static asset of one pose (clip 0 halfway),
@@ -159,11 +214,13 @@ void CheckBake(const std::string& name) {
       CHECK(worst < 1e-5 * diagonal);
     }
     std::printf(
-        "%-18s %-5s %zu clips, %4zu frames, %5zu vertices: %8.3f MB, validator %d errors %d "
-        "warnings, three.js vs poser max %.2g of the diagonal\n",
+        "%-18s %-5s %zu clips, %4zu frames, %5zu vertices: %8.3f MB (--quantize --compress "
+        "%.3f MB), validator %d errors %d warnings, three.js vs poser max %.2g of the "
+        "diagonal\n",
         name.c_str(), DeformerName(kind), report.frames.size(), report.targets, report.vertices,
-        static_cast<double>(fs::file_size(file)) / 1e6, validation.errors, validation.warnings,
-        worst_relative);
+        static_cast<double>(fs::file_size(file)) / 1e6,
+        check_packed ? static_cast<double>(fs::file_size(packed_file)) / 1e6 : 0.0,
+        validation.errors, validation.warnings, worst_relative);
   }
 }
 

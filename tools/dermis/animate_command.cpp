@@ -32,9 +32,9 @@ struct AnimateArgs {
   double time = 0.0;
   bool time_given = false;
   std::string deformer = "sweep";
-  std::string mode = "bound";
-  int level = 4;
-  int displacement_levels = -1;
+  std::string mode = kDefaultMode;
+  int level = kDefaultLevel;
+  int displacement_levels = kAllDisplacementLevels;
   double fps = kDefaultPoseStepsPerSecond;
   int threads = 0;
   bool quiet = false;

@@ -4,6 +4,7 @@
 #include <charconv>
 
 #include "dermis/core/file_io.h"
+#include "dermis/surface/bspline_displacement.h"
 
 namespace dermis::cli {
 
@@ -31,19 +32,40 @@ Status MakePoseOptions(const std::string& deformer, const std::string& mode, int
   return Status::Ok();
 }
 
-void AddEvaluationOptions(CLI::App* cmd, const std::string& bound_help, std::string* mode,
-                          int* level, int* displacement_levels) {
-  cmd->add_option("--mode", *mode,
-                  "bound: " + bound_help + "; lod: the surface tessellated at --level")
+CLI::Option* AddModeOption(CLI::App* cmd, const std::string& bound_help, std::string* mode) {
+  *mode = kDefaultMode;
+  return cmd
+      ->add_option(
+          "--mode", *mode,
+          "Characters: bound (" + bound_help + ") or lod (the surface tessellated at --level)")
       ->check(CLI::IsMember({"bound", "lod"}))
       ->capture_default_str();
-  cmd->add_option("--level", *level, "lod: segments per control-face edge")
-      ->check(CLI::Range(1, 64))
+}
+
+CLI::Option* AddLevelOption(CLI::App* cmd, int* level, bool short_name) {
+  *level = kDefaultLevel;
+  return cmd
+      ->add_option(short_name ? "-l,--level" : "--level", *level,
+                   "Segments per control-face edge of the tessellation (lod mode, surfaces)")
+      ->check(CLI::Range(1, kMaxLevel))
       ->capture_default_str();
-  cmd->add_option("--displacement-levels", *displacement_levels,
-                  "Displacement levels to evaluate (-1: all, 0: the domain surface)")
-      ->check(CLI::Range(-1, 13))
+}
+
+CLI::Option* AddDisplacementLevelsOption(CLI::App* cmd, int* displacement_levels) {
+  *displacement_levels = kAllDisplacementLevels;
+  return cmd
+      ->add_option("--displacement-levels", *displacement_levels,
+                   "Displacement levels evaluated: -1 all (default), 0 the domain surface alone, "
+                   "L the first L")
+      ->check(CLI::Range(-1, kMaxBsplineLevels))
       ->capture_default_str();
+}
+
+void AddEvaluationOptions(CLI::App* cmd, const std::string& bound_help, std::string* mode,
+                          int* level, int* displacement_levels) {
+  AddModeOption(cmd, bound_help, mode);
+  AddLevelOption(cmd, level);
+  AddDisplacementLevelsOption(cmd, displacement_levels);
 }
 
 std::string ClipList(const Asset& asset) {

@@ -25,8 +25,26 @@ CLI::Option* AddDeformerOption(CLI::App* cmd, const std::string& flag, const std
 Status MakePoseOptions(const std::string& deformer, const std::string& mode, int level,
                        int displacement_levels, int threads, CharacterPoseOptions* out);
 
-/// Registers the options that choose what is evaluated on a surface, shared by `export` and
-/// `animate`: --mode bound|lod (described by `bound_help`), --level n, --displacement-levels L.
+/// The one set of evaluation options (docs/cli.md, "Options every command shares"): the same
+/// names, ranges, meanings and defaults in `tessellate`, `export`, `animate` and `render`.
+/// --mode: what a character's meshes are.
+constexpr const char* kDefaultMode = "bound";
+/// --level n: segments per control-face edge of the tessellation, 1..kMaxLevel.
+constexpr int kDefaultLevel = 6;
+constexpr int kMaxLevel = 128;
+/// --displacement-levels L: -1 all the levels the file has (the default), 0 the domain surface
+/// alone, L > 0 the first L levels (more than the file has: all of them); at most
+/// kMaxBsplineLevels (the most a .dsurf can hold).
+constexpr int kAllDisplacementLevels = -1;
+
+/// Adds --mode bound|lod (bound described by `bound_help`) with kDefaultMode.
+CLI::Option* AddModeOption(CLI::App* cmd, const std::string& bound_help, std::string* mode);
+/// Adds --level (and -l when `short_name`) with kDefaultLevel and the range 1..kMaxLevel.
+CLI::Option* AddLevelOption(CLI::App* cmd, int* level, bool short_name = false);
+/// Adds --displacement-levels with kAllDisplacementLevels and the range -1..kMaxBsplineLevels.
+CLI::Option* AddDisplacementLevelsOption(CLI::App* cmd, int* displacement_levels);
+
+/// Registers the three options above, shared by `export`, `animate` and `render`.
 void AddEvaluationOptions(CLI::App* cmd, const std::string& bound_help, std::string* mode,
                           int* level, int* displacement_levels);
 

@@ -112,17 +112,4 @@ Json DescribeCharacter(const Character& ch) {
   return j;
 }
 
-ProgressLine::ProgressLine(const char* command, bool quiet)
-    : command_(command), enabled_(!quiet && isatty(STDERR_FILENO)) {}
-
-void ProgressLine::Update(const std::string& stage) const {
-  if (!enabled_) return;
-  std::fprintf(stderr, "\r%s: %-60s", command_, stage.c_str());
-  std::fflush(stderr);
-}
-
-void ProgressLine::Clear() const {
-  if (enabled_) std::fprintf(stderr, "\r%-78s\r", "");
-}
-
 }  // namespace dermis::cli

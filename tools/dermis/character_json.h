@@ -21,18 +21,4 @@ Json DescribeSurface(const DisplacedSurface& surface);
 /// with their reasons.
 Json DescribeCharacter(const Character& ch);
 
-/// A TTY progress line on stderr: Update() rewrites it, Clear() erases it. Does nothing when
-/// stderr is not a terminal or when `quiet`.
-class ProgressLine {
- public:
-  ProgressLine(const char* command, bool quiet);
-  bool enabled() const { return enabled_; }
-  void Update(const std::string& stage) const;
-  void Clear() const;
-
- private:
-  const char* command_;
-  bool enabled_;
-};
-
 }  // namespace dermis::cli

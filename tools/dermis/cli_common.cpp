@@ -40,11 +40,17 @@ void AddThreadsOption(CLI::App* cmd, int* threads, const std::string& prefix) {
 
 void SetRunWithOutputs(CLI::App* cmd, std::function<int()>* run, const char* command,
                        std::function<std::vector<std::string>()> outputs, std::function<int()> body,
-                       std::function<void()> at_parse) {
+                       std::function<void()> at_parse, bool stdout_ok) {
   auto force = AddForceFlag(cmd);
   cmd->callback([=]() {
     if (at_parse) at_parse();
     *run = [=]() {
+      for (const std::string& p : outputs()) {
+        if (p == "-" && !stdout_ok) {
+          return Usage(command, std::string("'-o -' (stdout) is not supported by 'dermis ") +
+                                    command + "': give a file name");
+        }
+      }
       const int rc = CheckOverwrite(command, outputs(), *force);
       return rc != kExitOk ? rc : body();
     };
@@ -61,7 +67,7 @@ int CheckOverwrite(const std::string& command, const std::vector<std::string>& p
   if (force) return kExitOk;
   for (const std::string& p : paths) {
     std::error_code ec;
-    if (!p.empty() && std::filesystem::exists(p, ec)) {
+    if (!p.empty() && p != "-" && std::filesystem::exists(p, ec)) {
       return Usage(command.c_str(), p + " exists; pass --force to overwrite it");
     }
   }

@@ -37,10 +37,12 @@ void AddThreadsOption(CLI::App* cmd, int* threads, const std::string& prefix = "
 
 /// Finishes a subcommand that writes files: adds -f,--force and sets its callback so that
 /// `*run` refuses (CheckOverwrite) any of `outputs()` that exists unless --force is given, then
-/// returns `body()`. `at_parse`, if set, runs when the subcommand is parsed.
+/// returns `body()`. `at_parse`, if set, runs when the subcommand is parsed. An output "-"
+/// (stdout) is a usage error unless `stdout_ok` (commands whose format can stream: export's
+/// GLB).
 void SetRunWithOutputs(CLI::App* cmd, std::function<int()>* run, const char* command,
                        std::function<std::vector<std::string>()> outputs, std::function<int()> body,
-                       std::function<void()> at_parse = nullptr);
+                       std::function<void()> at_parse = nullptr, bool stdout_ok = false);
 
 /// Adds -f,--force ("overwrite existing outputs") to `cmd`; the returned flag is set by parsing.
 std::shared_ptr<bool> AddForceFlag(CLI::App* cmd);

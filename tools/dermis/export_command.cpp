@@ -17,6 +17,7 @@
 #include "dermis/offline/character/character_pose.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/runtime/character.h"
+#include "progress_bar.h"
 
 namespace dermis::cli {
 namespace {
@@ -26,9 +27,9 @@ constexpr const char* kCommand = "export";
 struct ExportArgs {
   std::string input;
   std::string output;
-  std::string mode = "bound";
-  int level = 4;
-  int displacement_levels = -1;
+  std::string mode = kDefaultMode;
+  int level = kDefaultLevel;
+  int displacement_levels = kAllDisplacementLevels;
   bool embed = false;
   int max_influences = 4;
   bool bake = false;
@@ -36,7 +37,36 @@ struct ExportArgs {
   std::string deformer = "sweep";
   int threads = 0;
   bool quiet = false;
+  bool quantize = false;
+  bool compress = false;
 };
+
+/// One stderr line on what --quantize / --compress did (docs/gltf-compression.md).
+void PrintPacking(const GltfExportReport& r) {
+  if (r.quantized) {
+    std::fprintf(stderr,
+                 "dermis export: quantized (KHR_mesh_quantization): positions %d bits (step %.3g, "
+                 "max error %.3g), normals max %.3g deg, weights max %.2g, uv max %.2g",
+                 r.position_bits, r.position_step, r.max_position_error, r.max_normal_error_degrees,
+                 r.max_weight_error, r.max_texcoord_error);
+    if (r.float_target_accessors > 0) {
+      std::fprintf(stderr, ", %zu morph normal accessors kept float32 (deltas beyond [-1, 1])",
+                   r.float_target_accessors);
+    }
+    std::fprintf(stderr, "\n");
+  }
+  if (r.compressed) {
+    std::fprintf(stderr,
+                 "dermis export: compressed (EXT_meshopt_compression, required): %zu -> %zu "
+                 "bytes of vertex, index and animation data",
+                 r.bytes_before_compression, r.bytes_after_compression);
+    if (r.filtered_target_accessors > 0) {
+      std::fprintf(stderr, ", %zu float morph normal accessors filtered (max error %.2g)",
+                   r.filtered_target_accessors, r.max_filtered_target_error);
+    }
+    std::fprintf(stderr, "\n");
+  }
+}
 
 /// Vertex-frames above which the bake warns (24 bytes each: about 400 MB).
 constexpr std::uint64_t kLargeBake = std::uint64_t{1} << 24;
@@ -70,12 +100,15 @@ Status Bake(const ExportArgs& a, const Character& ch, Asset* out, CharacterBakeR
                    24.0 * static_cast<double>(frames * vertices) / 1e6);
     }
   }
-  return BuildBakedAsset(&poser, a.fps, out, report);
+  ProgressBar bar(kCommand, a.quiet);
+  return BuildBakedAsset(&poser, a.fps, out, report, bar.Callback());
 }
 
 int RunExport(const ExportArgs& a) {
-  if (!IsGltfPath(a.output)) {
-    return Usage(kCommand, a.output + ": the output must be .glb or .gltf");
+  const bool to_stdout = a.output == "-";
+  if (!to_stdout && !IsGltfPath(a.output)) {
+    return Usage(kCommand,
+                 a.output + ": the output must be .glb or .gltf (or - for a GLB on stdout)");
   }
   std::string bytes;
   Character ch;
@@ -99,11 +132,25 @@ int RunExport(const ExportArgs& a) {
   gltf.max_influences = a.max_influences;
   gltf.generator = std::string("Dermis ") + DERMIS_VERSION;
   if (a.embed) gltf.dsurf_bytes = bytes;
-  MakeParentFolder(a.output);
-  s = ExportGltf(out, gltf, a.output);
-  if (!s.ok()) return Fail(kCommand, s);
+  gltf.quantize = a.quantize;
+  gltf.compress = a.compress;
+  GltfExportReport packing;
+  if (to_stdout) {
+    // `-o -`: the GLB on stdout, written only once it is complete (nothing half-written).
+    std::string glb;
+    s = SerializeGltf(out, gltf, /*binary=*/true, &glb, &packing);
+    if (!s.ok()) return Fail(kCommand, s);
+    if (std::fwrite(glb.data(), 1, glb.size(), stdout) != glb.size() || std::fflush(stdout) != 0) {
+      return Fail(kCommand, Status::IoError("<stdout>: write failed"));
+    }
+  } else {
+    MakeParentFolder(a.output);
+    s = ExportGltf(out, gltf, a.output, &packing);
+    if (!s.ok()) return Fail(kCommand, s);
+  }
   if (!a.quiet) {
     for (const std::string& n : notes) std::fprintf(stderr, "dermis export: note: %s\n", n.c_str());
+    PrintPacking(packing);
     std::size_t vertices = 0;
     for (const AssetMesh& m : out.meshes) {
       for (const AssetPrimitive& p : m.primitives) vertices += p.positions.size();
@@ -138,7 +185,8 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
   CLI::App* cmd = app->add_subcommand(
       "export", "Export a fitted character (.dsurf) as a skinned glTF (.glb or .gltf).");
   cmd->add_option("INPUT", args->input, "Fitted character or surface (.dsurf)")->required();
-  cmd->add_option("-o,--output", args->output, "Output .glb or .gltf")->required();
+  cmd->add_option("-o,--output", args->output, "Output .glb or .gltf; - writes the GLB to stdout")
+      ->required();
   AddEvaluationOptions(cmd, "original topology, UVs and materials on the displaced surface",
                        &args->mode, &args->level, &args->displacement_levels);
   cmd->add_option("--max-influences", args->max_influences,
@@ -158,11 +206,19 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
   AddDeformerOption(cmd, "--deformer", "--bake-sweep: deformer of the control vertices",
                     &args->deformer)
       ->capture_default_str();
+  cmd->add_flag("--quantize", args->quantize,
+                "Store attributes as integers (KHR_mesh_quantization, required): positions on a "
+                "grid chosen from the model (error reported), normals/tangents as 16-bit "
+                "normalised, UVs/colours/weights as 16-bit normalised");
+  cmd->add_flag("--compress", args->compress,
+                "Encode vertex, index and animation data with meshoptimizer "
+                "(EXT_meshopt_compression, required; three.js, Babylon.js and gltfpack read it, "
+                "Assimp 5.2 does not)");
   AddThreadsOption(cmd, &args->threads, "--bake-sweep: ");
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
       cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
-      [args] { return RunExport(*args); });
+      [args] { return RunExport(*args); }, nullptr, /*stdout_ok=*/true);
 }
 
 }  // namespace dermis::cli

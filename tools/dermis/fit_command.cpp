@@ -19,6 +19,7 @@
 #include "dermis/offline/io/obj_io.h"
 #include "dermis/offline/io/point_input.h"
 #include "importers.h"
+#include "progress_bar.h"
 
 namespace dermis::cli {
 namespace {
@@ -99,9 +100,35 @@ void ApplyDisplacementArgs(const FitArgs& a, DisplacementFitOptions* o) {
   if (a.consistency >= 0.0) o->adaptive.consistency = a.consistency;
 }
 
-nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
+/// The options a fit ran with, after the library's defaults for the input kind were applied,
+/// so that a report says how to repeat its run.
+nlohmann::ordered_json EffectiveOptionsJson(const FitOptions& f) {
+  nlohmann::ordered_json o;
+  o["control_vertices"] = f.control_vertices;
+  o["control_fit_iterations"] = f.control_fit_iterations;
+  o["holdout"] = f.holdout;
+  const DisplacementFitOptions& d = f.displacement;
+  o["displacement"] = d.method == DisplacementMethod::kMba ? "mba" : "adaptive";
+  o["levels"] = d.max_levels;
+  o["density"] = d.density;
+  o["finest_passes"] = d.finest_passes;
+  o["smoothing"] = d.smoothing;
+  o["node_weight"] = d.adaptive.min_node_weight;
+  o["level_smoothing"] = d.adaptive.smoothing;
+  o["validation"] = d.adaptive.validation;
+  o["min_improvement"] = d.adaptive.min_improvement;
+  o["residual"] = d.adaptive.residual_threshold;
+  o["budget"] = d.adaptive.max_coefficients_per_point;
+  o["consistency"] = d.adaptive.consistency;
+  return o;
+}
+
+nlohmann::ordered_json ReportJson(const FitArgs& a, const FitOptions& options,
+                                  const FitReport& r) {
   nlohmann::ordered_json j;
   j["schema"] = "dermis.fit/1";
+  j["dermis_version"] = DERMIS_VERSION;
+  j["options"] = EffectiveOptionsJson(options);
   j["input"] = a.input;
   j["output"] = a.output;
   j["points"] = r.points;
@@ -165,9 +192,13 @@ nlohmann::ordered_json ReportJson(const FitArgs& a, const FitReport& r) {
   return j;
 }
 
-Json CharacterReportJson(const FitArgs& a, const Character& ch, const CharacterFitReport& r) {
+Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, const Character& ch,
+                         const CharacterFitReport& r) {
   Json j;
   j["schema"] = "dermis.fit-character/1";
+  j["dermis_version"] = DERMIS_VERSION;
+  j["options"] = EffectiveOptionsJson(options.fit);
+  j["options"]["control_ratio"] = options.vertex_ratio;
   j["input"] = a.input;
   j["output"] = a.output;
   j["meshes"] = r.meshes;
@@ -223,8 +254,10 @@ int RunFitCharacter(const FitArgs& a) {
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.threads = a.threads;
-  const ProgressLine progress("dermis fit", a.quiet);
-  if (progress.enabled()) options.progress = [&](const std::string& st) { progress.Update(st); };
+  ProgressBar progress(kCommand, a.quiet);
+  if (progress.enabled()) {
+    options.progress = [&](const std::string& st) { progress.Update(st.c_str(), 0, 0); };
+  }
   Character ch;
   CharacterFitReport report;
   s = FitCharacter(asset, options, &ch, &report);
@@ -234,7 +267,7 @@ int RunFitCharacter(const FitArgs& a) {
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
-    s = WriteFileAtomically(a.report, CharacterReportJson(a, ch, report).dump(2) + "\n");
+    s = WriteFileAtomically(a.report, CharacterReportJson(a, options, ch, report).dump(2) + "\n");
     if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet) {
@@ -291,8 +324,10 @@ int RunFit(const FitArgs& a) {
   if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
   options.holdout = a.holdout;
   options.threads = a.threads;
-  const ProgressLine progress("dermis fit", a.quiet);
-  if (progress.enabled()) options.progress = [&](const std::string& st) { progress.Update(st); };
+  ProgressBar progress(kCommand, a.quiet);
+  if (progress.enabled()) {
+    options.progress = [&](const std::string& st) { progress.Update(st.c_str(), 0, 0); };
+  }
   FittedSurface fitted;
   FitReport report;
   s = FitSurface(input, options, &fitted, &report);
@@ -306,7 +341,7 @@ int RunFit(const FitArgs& a) {
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
-    s = WriteFileAtomically(a.report, ReportJson(a, report).dump(2) + "\n");
+    s = WriteFileAtomically(a.report, ReportJson(a, options, report).dump(2) + "\n");
     if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet && !report.control_mesh.fallback.empty()) {

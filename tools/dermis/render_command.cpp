@@ -22,6 +22,7 @@
 #include "dermis/offline/io/point_input.h"
 #include "dermis/surface/tessellation.h"
 #include "importers.h"
+#include "progress_bar.h"
 #include "render/raster.h"
 
 namespace dermis::cli {
@@ -37,9 +38,9 @@ struct RenderArgs {
   bool time_given = false;
   std::string deformer = "sweep";
   std::string compare;  // deformers (comma-separated) drawn as further rows
-  std::string mode = "lod";
-  int level = 6;
-  int displacement_levels = -1;
+  std::string mode = kDefaultMode;
+  int level = kDefaultLevel;
+  int displacement_levels = kAllDisplacementLevels;
   std::string heatmap = "none";
   std::string reference;
   std::string size = "800x800";
@@ -223,8 +224,8 @@ Status ErrorMaps(const RenderArgs& a, std::vector<std::vector<render::Mesh>>* su
   return Status::Ok();
 }
 
-// A surface (version 1 or 3; no pose): one view per displacement level of --series, or per turntable
-// angle. Returns an exit status.
+// A surface (version 1 or 3; no pose): one view per displacement level of --series, or per
+// turntable angle. Returns an exit status.
 int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::View* view_out,
                   std::vector<render::Image>* images) {
   render::View& view = *view_out;
@@ -260,6 +261,7 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
     view.legend = "distance to data";
   }
   const int views = std::max(1, a.turntable);
+  ProgressBar bar(kCommand, a.quiet);
   for (std::size_t k = 0; k < levels.size(); ++k) {
     if (!a.series.empty()) {
       const std::string name =
@@ -272,6 +274,7 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
       }
     }
     for (int v = 0; v < views; ++v) {
+      bar.Update("drawing views", images->size(), levels.size() * static_cast<std::size_t>(views));
       if (a.turntable > 0)
         view.azimuth = a.azimuth + 360.0f * static_cast<float>(v) / static_cast<float>(views);
       images->push_back(render::Render(surfaces[k], view));
@@ -348,8 +351,10 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
   }
   std::vector<std::vector<render::Mesh>> frames;
   render::Box box;
+  ProgressBar bar(kCommand, a.quiet);
   for (std::size_t k = 0; k < posers.size(); ++k) {
     for (double t : times) {
+      bar.Update("posing frames", frames.size(), posers.size() * times.size());
       std::vector<PosedPrimitive> posed;
       s = posers[k].PoseClip(clip, t, a.fps, &posed);
       if (!s.ok()) return Fail(kCommand, s);
@@ -377,6 +382,7 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
   const int views = std::max(1, a.turntable);
   for (std::size_t f = 0; f < frames.size(); ++f) {
     for (int k = 0; k < views; ++k) {
+      bar.Update("drawing views", images->size(), frames.size() * static_cast<std::size_t>(views));
       if (a.turntable > 0)
         view.azimuth = a.azimuth + 360.0f * static_cast<float>(k) / static_cast<float>(views);
       if (a.caption.empty() && (frames.size() > 1 || !a.compare.empty())) {
@@ -496,18 +502,8 @@ void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
             return std::string();
           },
           "DEFORMER[,DEFORMER...]"));
-  cmd->add_option("--mode", args->mode,
-                  "Characters: lod (the surface tessellated at --level) or bound (the original "
-                  "vertices on the surface)")
-      ->check(CLI::IsMember({"lod", "bound"}))
-      ->capture_default_str();
-  cmd->add_option("--level", args->level, "Segments per control-face edge")
-      ->check(CLI::Range(1, 64))
-      ->capture_default_str();
-  cmd->add_option("--displacement-levels", args->displacement_levels,
-                  "Displacement levels (-1: all, 0: the domain surface)")
-      ->check(CLI::Range(-1, 16))
-      ->capture_default_str();
+  AddEvaluationOptions(cmd, "the original vertices on the surface", &args->mode, &args->level,
+                       &args->displacement_levels);
   cmd->add_option("--heatmap", args->heatmap,
                   "Colour by: none, or error (distance to the source mesh at the rest pose for a "
                   "character, to --reference for a surface; 0..99th percentile, legend)")

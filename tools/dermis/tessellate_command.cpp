@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "character_args.h"
 #include "commands.h"
 #include "dermis/core/path.h"
 #include "dermis/dsurf/dsurf.h"
@@ -25,7 +26,7 @@ struct TessellateArgs {
   std::string input;
   std::string builtin;
   std::string output;
-  int level = 8;
+  int level = kDefaultLevel;
   std::string chart = "characteristic";
   std::string blend = "cinf";
   double blend_lb = DomainOptions{}.blend_lb;
@@ -139,9 +140,7 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--builtin", args->builtin, "Use a built-in control mesh instead: " + names);
   cmd->add_option("-o,--output", args->output, "Output OBJ (positions, vn normals, triangles)")
       ->required();
-  cmd->add_option("-l,--level", args->level, "Segments per control-face edge (>= 1)")
-      ->check(CLI::Range(1, 4096))
-      ->capture_default_str();
+  AddLevelOption(cmd, &args->level, /*short_name=*/true);
   cmd->add_option("--chart", args->chart, "Chart radial exponent")
       ->check(CLI::IsMember({"characteristic", "complex", "isodistance"}))
       ->capture_default_str();
@@ -151,9 +150,7 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--blend-lb", args->blend_lb, "Blending window start lb in (0, 0.5); ub = 1 - lb")
       ->check(CLI::Range(1e-6, 0.499999))
       ->capture_default_str();
-  cmd->add_option("--displacement-levels", args->displacement_levels,
-                  "For a .dsurf: displacement levels to use (0: domain surface; default all)")
-      ->check(CLI::Range(0, kMaxBsplineLevels));
+  AddDisplacementLevelsOption(cmd, &args->displacement_levels);
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
       cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },

@@ -44,7 +44,8 @@ std::string ShellQuote(const std::string& s) {
 
 // tests/js/validate.js (the project's wrapper of the Khronos validator, installed by
 // scripts/setup_js.sh): from $DERMIS_VALIDATE_JS, beside the source tree of this executable
-// (build/bin/../../tests/js), or below the working directory.
+// (build/bin/../../tests/js), in the checkout an installed dermis was built from, or below the
+// working directory.
 std::string FindValidatorScript() {
   namespace fs = std::filesystem;
   if (const char* env = std::getenv("DERMIS_VALIDATE_JS")) {
@@ -54,6 +55,8 @@ std::string FindValidatorScript() {
   std::vector<fs::path> candidates;
   const fs::path exe = fs::canonical("/proc/self/exe", ec);
   if (!ec) candidates.push_back(exe.parent_path() / "../../tests/js/validate.js");
+  // An installed dermis: the checkout it was built from (where scripts/setup_js.sh installs).
+  candidates.push_back(fs::path(DERMIS_SOURCE_DIR) / "tests/js/validate.js");
   candidates.push_back("tests/js/validate.js");
   for (const fs::path& p : candidates) {
     if (fs::exists(p, ec) && fs::exists(p.parent_path() / "node_modules/gltf-validator", ec)) {

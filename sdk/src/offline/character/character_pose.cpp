@@ -453,7 +453,8 @@ Status BuildPosedAsset(const CharacterPoser& poser, const std::vector<PosedPrimi
   return Status::Ok();
 }
 
-Status BuildBakedAsset(CharacterPoser* poser, double fps, Asset* out, CharacterBakeReport* report) {
+Status BuildBakedAsset(CharacterPoser* poser, double fps, Asset* out, CharacterBakeReport* report,
+                       const ProgressCallback& progress) {
   const Asset& src = poser->asset();
   if (!std::isfinite(fps) || !(fps > 0.0)) {
     return Status::InvalidInput(src.source + ": frames per second must be positive");
@@ -488,9 +489,11 @@ Status BuildBakedAsset(CharacterPoser* poser, double fps, Asset* out, CharacterB
   }
   std::vector<PosedPrimitive> frame;
   AssetPose pose;
+  std::size_t baked = 0;
   for (std::size_t c = 0; c < src.animations.size(); ++c) {
     poser->ResetHistory();
     for (const double t : frame_times[c]) {
+      ReportProgress(progress, "baking frames", baked++, rep.targets);
       SamplePose(src, static_cast<int>(c), t, &pose);
       s = poser->SetPose(pose);
       if (!s.ok()) return s.WithContext("clip " + std::to_string(c) + " at " + std::to_string(t));
@@ -542,6 +545,7 @@ Status BuildBakedAsset(CharacterPoser* poser, double fps, Asset* out, CharacterB
     }
     a.animations.push_back(std::move(anim));
   }
+  ReportProgress(progress, "baking frames", rep.targets, rep.targets);
   *out = std::move(a);
   if (report != nullptr) *report = std::move(rep);
   return Status::Ok();

@@ -18,6 +18,7 @@
 
 #include "dermis/asset/asset.h"
 #include "dermis/asset/asset_pose.h"
+#include "dermis/core/progress.h"
 #include "dermis/core/status.h"
 #include "dermis/deform/deformer.h"
 #include "dermis/runtime/character.h"
@@ -138,6 +139,8 @@ struct CharacterBakeReport {
 /// animation per clip whose weights channel on every baked node is one-hot at the clip's own
 /// frames (LINEAR: exact at the frames, linear in between). Any glTF viewer thus plays exactly
 /// the poser's motion, the sweep's included. Fails when the asset has no clips.
-Status BuildBakedAsset(CharacterPoser* poser, double fps, Asset* out, CharacterBakeReport* report);
+/// `progress`, if set, is called once per baked frame ("baking frames", done, total).
+Status BuildBakedAsset(CharacterPoser* poser, double fps, Asset* out, CharacterBakeReport* report,
+                       const ProgressCallback& progress = {});
 
 }  // namespace dermis
