@@ -689,12 +689,15 @@ TEST_CASE("gpu: the C API evaluates like dermis_evaluate") {
             DERMIS_OK);
     const Difference d = Compare(gpu_out, cpu);
     INFO("part " << part << ": " << d);
-    // dermis_evaluate() runs the fastest kernel: against the portable one every bound holds;
-    // against AVX2 + FMA (fused multiply-adds) positions do and normals are only reported, as
-    // in the tests above (docs/gpu.md, section 8).
-    CHECK(d.finite);
-    CHECK(d.position < 1e-5);
-    if (BestSimdPath() == SimdPath::kGeneric) CHECK(d.ok());
+    // dermis_evaluate runs the fastest CPU kernel: as against it in Versus, positions are held
+    // to the bound and normals are not (AVX2's fused multiply-adds move a normal where the
+    // derivatives nearly vanish; the shader equals the portable kernel, checked above).
+    if (BestSimdPath() == SimdPath::kGeneric) {
+      CHECK(d.ok());
+    } else {
+      CHECK(d.finite);
+      CHECK(d.position < 1e-5);
+    }
     // The accessors an engine with its own device uploads from.
     const void* blocks = nullptr;
     const float* data = nullptr;
