@@ -9,7 +9,8 @@ cd "$(dirname "$0")/.."
 # validation layer the tests run under.
 packages=(build-essential cmake libeigen3-dev libglm-dev catch2 libcli11-dev libmeshoptimizer-dev
           nlohmann-json3-dev libtinygltf-dev libassimp-dev libdraco-dev pkg-config libosd-dev
-          libstb-dev liblemon-dev libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers)
+          libstb-dev liblemon-dev libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers
+          clang-14 g++-aarch64-linux-gnu qemu-user file)
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -127,13 +127,19 @@ typedef struct Part {
 #endif
   float* buffers[2]; /* 6 floats per vertex */
   float* rest[2];
+  size_t bytes[2]; /* size of buffers[o] */
   size_t vertices[2];
   Rig rig;
   float* palette;
   float* world;
   int* done;
+  /* The engine's own skeleton: its joints in another order (here the skin's reversed) and the
+   * palette in that order; remap[j] = the engine's index of skin joint j, matched by name. */
+  float* engine_palette;
+  int32_t* remap;
 } Part;
 
+#ifdef DERMIS_ENGINE_LOOP_GPU
 /* Largest |a - b| over positions (relative to the bounding-box diagonal of b) and normals of
  * n interleaved vertices, and the count of normals that differ by more than 1e-4. */
 static void Difference(const float* a, const float* b, size_t n, double* position, double* normal,
@@ -161,6 +167,7 @@ static void Difference(const float* a, const float* b, size_t n, double* positio
     if (!(sqrt(dn) <= 1e-4)) ++*normals_over;
   }
 }
+#endif
 
 int main(int argc, char** argv) {
   const char* path = NULL;
@@ -233,6 +240,7 @@ int main(int argc, char** argv) {
     for (int o = 0; o < 2; ++o) {
       const size_t n = dermis_output_vertex_count(part[p].outputs[o]);
       part[p].vertices[o] = n;
+      part[p].bytes[o] = (6 * n + 1) * sizeof(float);
       part[p].buffers[o] = calloc(6 * n + 1, sizeof(float));
       part[p].rest[o] = calloc(6 * n + 1, sizeof(float));
       if (!part[p].buffers[o] || !part[p].rest[o]) return 1;
@@ -267,6 +275,18 @@ int main(int argc, char** argv) {
     rig->parent = parent;
     rig->bind = bind;
     rig->inverse = inverse;
+    /* The engine's skeleton lists the joints by name in its own order; the remap is built
+     * once, by name, and every frame poses with the engine's palette as it is. */
+    part[p].engine_palette = calloc(16 * rig->joints + 1, sizeof(float));
+    part[p].remap = calloc(rig->joints + 1, sizeof(int32_t));
+    const char** engine_names = calloc(rig->joints + 1, sizeof(char*));
+    if (!part[p].engine_palette || !part[p].remap || !engine_names) return 1;
+    for (size_t j = 0; j < rig->joints; ++j) {
+      engine_names[rig->joints - 1 - j] = dermis_character_joint_name(character, p, j);
+    }
+    CHECK(dermis_character_joint_remap(character, p, engine_names, rig->joints, part[p].remap,
+                                       rig->joints));
+    free(engine_names);
     printf(
         "part %zu: %zu control vertices, %zu joints, level %d: %zu vertices %zu triangles, "
         "bound: %zu vertices\n",
@@ -275,6 +295,16 @@ int main(int argc, char** argv) {
   }
   dermis_instance* instance = NULL;
   CHECK(dermis_instance_create(character, deformer, &instance));
+  {
+    size_t output_bytes = 0;
+    for (size_t p = 0; p < parts; ++p) {
+      output_bytes += dermis_output_memory_bytes(part[p].outputs[0]) +
+                      dermis_output_memory_bytes(part[p].outputs[1]);
+    }
+    printf("memory: character %.3f MB, outputs %.3f MB, instance %.3f MB\n",
+           1e-6 * (double)dermis_character_memory_bytes(character), 1e-6 * (double)output_bytes,
+           1e-6 * (double)dermis_instance_memory_bytes(instance));
+  }
 
   double pose_time = 0.0, eval_time = 0.0, max_motion = 0.0;
   double gpu_position = 0.0, gpu_normal = 0.0;
@@ -297,7 +327,13 @@ int main(int argc, char** argv) {
           for (int k = 0; k < 4; ++k) part[p].palette[16 * j + 5 * k] = 1.0f;
         }
       }
-      CHECK(dermis_instance_pose(instance, p, part[p].palette, rig->joints));
+      /* The engine's palette is in its own joint order. */
+      for (size_t j = 0; j < rig->joints; ++j) {
+        memcpy(part[p].engine_palette + 16 * part[p].remap[j], part[p].palette + 16 * j,
+               16 * sizeof(float));
+      }
+      CHECK(dermis_instance_pose_remapped(instance, p, part[p].engine_palette, rig->joints,
+                                          part[p].remap, rig->joints));
     }
     double t1 = Now();
     for (size_t p = 0; p < parts; ++p) {
@@ -309,7 +345,8 @@ int main(int argc, char** argv) {
           continue;
         }
 #endif
-        CHECK(dermis_evaluate(instance, part[p].outputs[o], 0, SIZE_MAX, b, 24, b + 3, 24));
+        CHECK(dermis_evaluate(instance, part[p].outputs[o], 0, SIZE_MAX, b, 24, part[p].bytes[o],
+                              b + 3, 24, part[p].bytes[o] - 12));
       }
     }
     double t2 = Now();
@@ -318,7 +355,8 @@ int main(int argc, char** argv) {
       for (size_t p = 0; p < parts; ++p) {
         for (int o = 0; o < 2; ++o) {
           float* c = part[p].cpu_check[o];
-          CHECK(dermis_evaluate(instance, part[p].outputs[o], 0, SIZE_MAX, c, 24, c + 3, 24));
+          CHECK(dermis_evaluate(instance, part[p].outputs[o], 0, SIZE_MAX, c, 24, part[p].bytes[o],
+                                c + 3, 24, part[p].bytes[o] - 12));
           Difference(part[p].buffers[o], c, part[p].vertices[o], &gpu_position, &gpu_normal,
                      &gpu_normals_over);
           gpu_compared += part[p].vertices[o];
@@ -367,10 +405,22 @@ int main(int argc, char** argv) {
       CHECK(dermis_gpu_evaluate(part[p].gpu_outputs[1], instance, b, 24, b + 3, 24));
     } else
 #endif
-      CHECK(dermis_evaluate(instance, part[p].outputs[1], 0, SIZE_MAX, b, 24, b + 3, 24));
+      CHECK(dermis_evaluate(instance, part[p].outputs[1], 0, SIZE_MAX, b, 24, part[p].bytes[1],
+                            b + 3, 24, part[p].bytes[1] - 12));
     for (size_t i = 0; i < 6 * part[p].vertices[1]; ++i) {
       const double d = fabs((double)(b[i] - part[p].rest[1][i]));
       if (d > rest_error) rest_error = d;
+    }
+  }
+  /* Bad calls fail cleanly with a message; an undersized buffer is refused, nothing written. */
+  if (parts > 0 && part[0].vertices[0] > 1) {
+    float* b = part[0].buffers[0];
+    b[0] = -12345.0f;
+    const dermis_status s =
+        dermis_evaluate(instance, part[0].outputs[0], 0, SIZE_MAX, b, 24, 12, NULL, 0, 0);
+    if (s != DERMIS_ERROR_INVALID_ARGUMENT || b[0] != -12345.0f) {
+      fprintf(stderr, "engine_loop: an undersized buffer was not refused\n");
+      ++failures;
     }
   }
   /* Bad calls fail cleanly with a message. */
@@ -423,6 +473,8 @@ int main(int argc, char** argv) {
     free((void*)part[p].rig.bind);
     free((void*)part[p].rig.inverse);
     free(part[p].palette);
+    free(part[p].engine_palette);
+    free(part[p].remap);
     free(part[p].world);
     free(part[p].done);
   }

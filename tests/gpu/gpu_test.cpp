@@ -683,8 +683,8 @@ TEST_CASE("gpu: the C API evaluates like dermis_evaluate") {
     REQUIRE(dermis_gpu_output_create(context, output, &g) == DERMIS_OK);
     const size_t n = dermis_output_vertex_count(output);
     std::vector<float> cpu(6 * n), gpu_out(6 * n);
-    REQUIRE(dermis_evaluate(instance, output, 0, SIZE_MAX, cpu.data(), 24, cpu.data() + 3, 24) ==
-            DERMIS_OK);
+    REQUIRE(dermis_evaluate(instance, output, 0, SIZE_MAX, cpu.data(), 24, cpu.size() * 4,
+                            cpu.data() + 3, 24, cpu.size() * 4 - 12) == DERMIS_OK);
     REQUIRE(dermis_gpu_evaluate(g, instance, gpu_out.data(), 24, gpu_out.data() + 3, 24) ==
             DERMIS_OK);
     const Difference d = Compare(gpu_out, cpu);

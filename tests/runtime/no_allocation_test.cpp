@@ -124,7 +124,11 @@ TEST_CASE("runtime: per-frame calls do not allocate") {
   bool c_ok = true;
   for (int frame = 0; frame < 3; ++frame) {
     c_ok = dermis_instance_pose(inst, 0, palette.data(), 2) == DERMIS_OK && c_ok;
-    c_ok = dermis_evaluate(inst, out, 0, SIZE_MAX, buf.data(), 12, nullptr, 0) == DERMIS_OK && c_ok;
+    const int32_t remap[2] = {1, 0};  // the engine's order: the skin's reversed
+    c_ok = dermis_instance_pose_remapped(inst, 0, palette.data(), 2, remap, 2) == DERMIS_OK && c_ok;
+    c_ok = dermis_evaluate(inst, out, 0, SIZE_MAX, buf.data(), 12, buf.size() * 4, nullptr, 12,
+                           0) == DERMIS_OK &&
+           c_ok;
   }
   const long c_allocations = g_allocations.load() - before;
   CHECK(c_ok);
@@ -132,7 +136,7 @@ TEST_CASE("runtime: per-frame calls do not allocate") {
   // An error records a message (the one case that may allocate) and says what is wrong.
   CHECK(dermis_instance_pose(inst, 0, palette.data(), 1) == DERMIS_ERROR_INVALID_ARGUMENT);
   CHECK(std::string(dermis_last_error()).find("needs 2 skin matrices, got 1") != std::string::npos);
-  CHECK(dermis_evaluate(inst, out, 5, 2, buf.data(), 12, nullptr, 0) ==
+  CHECK(dermis_evaluate(inst, out, 5, 2, buf.data(), 12, buf.size() * 4, nullptr, 0, 0) ==
         DERMIS_ERROR_INVALID_ARGUMENT);
   dermis_output_destroy(out);
   dermis_instance_destroy(inst);

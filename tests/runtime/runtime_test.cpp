@@ -25,7 +25,7 @@ namespace {
 
 std::vector<SimdPath> AvailablePaths() {
   std::vector<SimdPath> paths;
-  for (SimdPath p : {SimdPath::kGeneric, SimdPath::kAvx2}) {
+  for (SimdPath p : {SimdPath::kScalar, SimdPath::kGeneric, SimdPath::kAvx2}) {
     if (SimdPathAvailable(p)) paths.push_back(p);
   }
   return paths;
@@ -209,11 +209,14 @@ TEST_CASE("runtime: results do not depend on threads, block splits or the plan's
   // every available backend writes the same bytes as the one kAuto picks, up to float
   // contraction (checked against the reference in the test above).
   CHECK(SimdPathAvailable(SimdPath::kGeneric));
+  CHECK(SimdPathAvailable(SimdPath::kScalar));
+  CHECK(BestSimdPath() != SimdPath::kScalar);
   CHECK(SimdPathAvailable(SimdPath::kAuto));
   CHECK(SimdPathAvailable(BestSimdPath()));
   CHECK(BestSimdPath() != SimdPath::kAuto);
   CHECK(std::string(SimdPathName(SimdPath::kGeneric)) == "generic");
   CHECK(std::string(SimdPathName(SimdPath::kAvx2)) == "avx2");
+  CHECK(std::string(SimdPathName(SimdPath::kScalar)) == "scalar");
   CHECK(std::string(SimdPathName(SimdPath::kAuto)) == SimdPathName(BestSimdPath()));
   CHECK(SimdPathAvailable(static_cast<SimdPath>(9)) == false);
   CHECK_FALSE(

@@ -25,6 +25,7 @@
 #include "dermis/dsurf/dsurf.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/runtime/character.h"
+#include "dermis/runtime/runtime.h"
 #include "importers.h"
 
 namespace dermis::cli {
@@ -37,7 +38,46 @@ constexpr const char* kInspectSchema = "dermis.inspect/1";
 struct InspectArgs {
   std::string input;
   bool json = false;
+  int memory_level = 4;  // the tessellation level whose output memory is reported
 };
+
+// The memory the runtime takes for a loaded character and for each part's outputs (the bound
+// vertices and a tessellation level): what an engine budgets with (docs/engine-integration.md).
+Status DescribeRuntimeMemory(Character ch, int level, Json* out) {
+  std::unique_ptr<RuntimeCharacter> rc;
+  Status s = RuntimeCharacter::FromCharacter(std::move(ch), &rc);
+  if (!s.ok()) return s;
+  Json j;
+  j["character_bytes"] = rc->memory_bytes();
+  j["level"] = level;
+  Json parts = Json::array();
+  std::size_t outputs = 0;
+  for (std::size_t p = 0; p < rc->num_parts(); ++p) {
+    Json part;
+    for (const OutputKind kind : {OutputKind::kBound, OutputKind::kLevel}) {
+      OutputSpec spec;
+      spec.kind = kind;
+      spec.level = level;
+      spec.threads = 0;
+      std::unique_ptr<RuntimeOutput> o;
+      s = RuntimeOutput::Build(*rc, p, spec, &o);
+      if (!s.ok()) return s;
+      const char* name = kind == OutputKind::kBound ? "bound" : "level";
+      part[name]["vertices"] = o->num_vertices();
+      part[name]["bytes"] = o->memory_bytes();
+      outputs += o->memory_bytes();
+    }
+    parts.push_back(part);
+  }
+  std::unique_ptr<RuntimeInstance> inst;
+  s = RuntimeInstance::Create(*rc, DeformerKind::kLbs, &inst);
+  if (!s.ok()) return s;
+  j["instance_bytes"] = inst->memory_bytes();
+  j["outputs_bytes"] = outputs;
+  j["parts"] = parts;
+  *out = j;
+  return Status::Ok();
+}
 
 // ---------------------------------------------------------------------------------------------
 // Assets (glTF and Assimp formats).
@@ -218,39 +258,39 @@ Json DescribeAsset(const Asset& asset) {
 /// `with_asset` (a .dsurf file rather than a .glb that already described its asset),
 /// report["asset"] from the source asset it stores.
 Status InspectDsurfBytes(std::string_view bytes, const std::string& name, bool with_asset,
-                         Json* report) {
+                         int memory_level, Json* report) {
   Character ch;
   std::uint32_t version = 0;
   const Status s = ParseCharacter(bytes, name, &ch, &version);
   if (!s.ok()) return s;
   if (IsSurfaceDsurfVersion(version)) {
     (*report)["surface"] = DescribeSurface(ch.parts[0].surface);
-    return Status::Ok();
+  } else {
+    if (with_asset) (*report)["asset"] = DescribeAsset(ch.asset);
+    (*report)["character"] = DescribeCharacter(ch);
   }
-  if (with_asset) (*report)["asset"] = DescribeAsset(ch.asset);
-  (*report)["character"] = DescribeCharacter(ch);
-  return Status::Ok();
+  return DescribeRuntimeMemory(std::move(ch), memory_level, &(*report)["runtime_memory"]);
 }
 
 /// A .dsurf file.
-Status InspectDsurf(const std::string& path, Json* report) {
+Status InspectDsurf(const std::string& path, int memory_level, Json* report) {
   std::string bytes;
   const Status s = ReadFileBytes(path, "a .dsurf file", &bytes);
   if (!s.ok()) return s;
-  return InspectDsurfBytes(bytes, path, true, report);
+  return InspectDsurfBytes(bytes, path, true, memory_level, report);
 }
 
 /// Any file an asset importer reads: fills report["asset"] (and report["surface"] or
 /// report["character"] for a file that carries a Dermis surface, as a .glb can in its
 /// DERMIS_displaced_surface extension).
-Status InspectAssetFile(const std::string& path, Json* report) {
+Status InspectAssetFile(const std::string& path, int memory_level, Json* report) {
   ImportedAsset imported;
   Status s = Importers().ImportAsset(path, &imported);
   if (!s.ok()) return s;
   (*report)["asset"] = DescribeAsset(imported.asset);
   if (!imported.embedded_dsurf.empty()) {
     s = InspectDsurfBytes(imported.embedded_dsurf, path + " (" + kDsurfGltfExtension + ")", false,
-                          report);
+                          memory_level, report);
     if (!s.ok()) return s;
   }
   return Status::Ok();
@@ -403,6 +443,27 @@ void PrintCharacter(const Json& c) {
   Table(rows);
 }
 
+void PrintRuntimeMemory(const Json& m) {
+  const auto mb = [](const Json& bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.3f MB", 1e-6 * bytes.get<double>());
+    return std::string(buf);
+  };
+  Row("runtime memory", "character " + mb(m["character_bytes"]) + ", instance " +
+                            mb(m["instance_bytes"]) + ", outputs (bound + level " +
+                            Str(m["level"]) + ") " + mb(m["outputs_bytes"]));
+  std::vector<std::vector<std::string>> rows;
+  std::size_t p = 0;
+  for (const Json& part : m["parts"]) {
+    rows.push_back(
+        {"part " + std::to_string(p++),
+         "bound: " + Str(part["bound"]["vertices"]) + " vertices, " + mb(part["bound"]["bytes"]),
+         "level " + Str(m["level"]) + ": " + Str(part["level"]["vertices"]) + " vertices, " +
+             mb(part["level"]["bytes"])});
+  }
+  Table(rows);
+}
+
 void PrintText(const Json& report) {
   Row("file",
       Str(report["file"]) + " (" + Str(report["format"]) + ", " + Str(report["bytes"]) + " bytes)");
@@ -416,6 +477,7 @@ void PrintText(const Json& report) {
     if (embedded) std::printf("%s\n", kDsurfGltfExtension);
     PrintCharacter(report["character"]);
   }
+  if (report.contains("runtime_memory")) PrintRuntimeMemory(report["runtime_memory"]);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -432,8 +494,8 @@ int RunInspect(const InspectArgs& a) {
   report["file"] = a.input;
   report["format"] = ext.empty() ? std::string("unknown") : ext.substr(1);
   report["bytes"] = size;
-  const Status s =
-      ext == ".dsurf" ? InspectDsurf(a.input, &report) : InspectAssetFile(a.input, &report);
+  const Status s = ext == ".dsurf" ? InspectDsurf(a.input, a.memory_level, &report)
+                                   : InspectAssetFile(a.input, a.memory_level, &report);
   if (!s.ok()) return Fail(kCommand, s);
   if (a.json) {
     std::printf("%s\n", report.dump(2, ' ', false, Json::error_handler_t::replace).c_str());
@@ -455,6 +517,10 @@ void AddInspectCommand(CLI::App* app, std::function<int()>* run) {
       ->required();
   cmd->add_flag("--json", args->json,
                 "Print one JSON object (\"schema\": \"dermis.inspect/1\") instead of text");
+  cmd->add_option("--memory-level", args->memory_level,
+                  "Tessellation level whose runtime output memory is reported for a surface")
+      ->check(CLI::Range(1, 64))
+      ->default_val(4);
   cmd->callback([run, args]() { *run = [args]() { return RunInspect(*args); }; });
 }
 

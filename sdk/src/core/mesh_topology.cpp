@@ -224,4 +224,13 @@ void MeshTopology::FindComponents() {
   }
 }
 
+std::size_t MeshTopology::memory_bytes() const {
+  return sizeof(Index) *
+             (face_offsets_.capacity() + face_vertices_.capacity() + halfedge_face_.capacity() +
+              twin_.capacity() + halfedge_edge_.capacity() + edge_halfedge_.capacity() +
+              ring_offsets_.capacity() + face_component_.capacity()) +
+         sizeof(int) * halfedge_ring_index_.capacity() + sizeof(RingCorner) * ring_.capacity() +
+         vertex_boundary_.capacity();
+}
+
 }  // namespace dermis

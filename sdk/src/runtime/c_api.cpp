@@ -1,7 +1,10 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The C API (dermis/dermis.h) over the C++ runtime (dermis/runtime/runtime.h).
+#include <algorithm>
 #include <new>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "dermis/dermis.h"
 #include "dermis/runtime/runtime.h"
@@ -49,7 +52,15 @@ bool PartOk(const dermis_character* c, size_t part) { return c && part < c->impl
 
 extern "C" {
 
+// The header's version macros must be the project's (CMake passes its version here).
+static_assert(DERMIS_VERSION_MAJOR == DERMIS_PROJECT_VERSION_MAJOR &&
+                  DERMIS_VERSION_MINOR == DERMIS_PROJECT_VERSION_MINOR &&
+                  DERMIS_VERSION_PATCH == DERMIS_PROJECT_VERSION_PATCH,
+              "dermis.h's DERMIS_VERSION_* disagree with the project version in CMakeLists.txt");
+
 const char* dermis_version(void) { return DERMIS_VERSION_STRING; }
+
+uint32_t dermis_version_number(void) { return DERMIS_VERSION_NUMBER; }
 
 const char* dermis_last_error(void) { return dermis::c_api::LastError(); }
 
@@ -98,6 +109,49 @@ dermis_status dermis_character_load_memory(const void* bytes, size_t size, const
 }
 
 void dermis_character_destroy(dermis_character* character) { delete character; }
+
+size_t dermis_character_memory_bytes(const dermis_character* c) {
+  return c ? sizeof(dermis_character) + c->impl->memory_bytes() : 0;
+}
+
+const char* dermis_character_joint_name(const dermis_character* c, size_t part, size_t joint) {
+  const dermis::SkinRig* rig = PartOk(c, part) ? c->impl->rig(part) : nullptr;
+  if (!rig || joint >= rig->parents.size()) return nullptr;
+  return joint < rig->names.size() ? rig->names[joint].c_str() : "";
+}
+
+dermis_status dermis_character_joint_remap(const dermis_character* c, size_t part,
+                                           const char* const* engine_names,
+                                           size_t engine_joint_count, int32_t* remap,
+                                           size_t remap_count) {
+  if (!PartOk(c, part)) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                "dermis_character_joint_remap: part " + std::to_string(part) + " does not exist");
+  }
+  const size_t joints = c->impl->num_joints(part);
+  if ((engine_joint_count > 0 && !engine_names) || (joints > 0 && !remap)) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_character_joint_remap: null argument");
+  }
+  if (remap_count < joints) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_character_joint_remap: the remap holds " +
+                                                   std::to_string(remap_count) + " entries, part " +
+                                                   std::to_string(part) + " has " +
+                                                   std::to_string(joints) + " joints");
+  }
+  std::vector<std::string_view> names(engine_joint_count);
+  for (size_t i = 0; i < engine_joint_count; ++i) {
+    if (!engine_names[i]) {
+      return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_character_joint_remap: engine joint " +
+                                                     std::to_string(i) + " has a null name");
+    }
+    names[i] = engine_names[i];
+  }
+  std::vector<int32_t> result;
+  const dermis_status s = FromStatus(c->impl->RemapJointsByName(part, names, &result));
+  if (s != DERMIS_OK) return s;
+  std::copy(result.begin(), result.end(), remap);
+  return DERMIS_OK;
+}
 
 size_t dermis_character_part_count(const dermis_character* c) {
   return c ? c->impl->num_parts() : 0;
@@ -188,6 +242,31 @@ dermis_status dermis_output_create(const dermis_character* c, size_t part,
 
 void dermis_output_destroy(dermis_output* output) { delete output; }
 
+size_t dermis_output_memory_bytes(const dermis_output* o) {
+  return o ? sizeof(dermis_output) + sizeof(dermis::RuntimeOutput) + o->impl->memory_bytes() : 0;
+}
+
+size_t dermis_output_required_bytes(const dermis_output* o, size_t block_begin, size_t block_end,
+                                    size_t stride) {
+  if (!o) return 0;
+  const dermis::EvaluationPlan& plan = o->impl->plan();
+  const size_t end = std::min(block_end, plan.num_blocks());
+  if (block_begin >= end) return 0;
+  // Lanes name their output vertex (blocks group a face's samples, not consecutive
+  // vertices): the whole output ends at its last vertex, a sub-range at its largest index.
+  size_t last_vertex = plan.num_samples() - 1;
+  if (block_begin > 0 || end < plan.num_blocks()) {
+    int32_t largest = 0;
+    for (size_t b = block_begin; b < end; ++b) {
+      const dermis::PlanBlock& block = plan.blocks()[b];
+      for (int32_t lane = 0; lane < block.count; ++lane)
+        largest = std::max(largest, block.index[lane]);
+    }
+    last_vertex = static_cast<size_t>(largest);
+  }
+  return last_vertex * stride + 3 * sizeof(float);
+}
+
 size_t dermis_output_vertex_count(const dermis_output* o) {
   return o ? o->impl->num_vertices() : 0;
 }
@@ -223,6 +302,10 @@ dermis_status dermis_instance_create(const dermis_character* c, dermis_deformer 
 
 void dermis_instance_destroy(dermis_instance* instance) { delete instance; }
 
+size_t dermis_instance_memory_bytes(const dermis_instance* instance) {
+  return instance ? sizeof(dermis_instance) + instance->impl->memory_bytes() : 0;
+}
+
 void dermis_instance_reset_history(dermis_instance* instance) {
   if (instance) instance->impl->ResetHistory();
 }
@@ -253,11 +336,73 @@ dermis_status dermis_instance_pose(dermis_instance* instance, size_t part,
   return DERMIS_OK;
 }
 
+dermis_status dermis_instance_pose_remapped(dermis_instance* instance, size_t part,
+                                            const float* engine_matrices, size_t engine_count,
+                                            const int32_t* remap, size_t remap_count) {
+  if (!instance)
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_instance_pose_remapped: null instance");
+  const dermis::RuntimeCharacter& c = instance->impl->character();
+  if (part >= c.num_parts()) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                "dermis_instance_pose_remapped: part " + std::to_string(part) + " does not exist");
+  }
+  const size_t joints = c.num_joints(part);
+  if (joints == 0) return DERMIS_OK;  // static: the rest pose
+  if (remap_count != joints || !remap || !engine_matrices) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                "dermis_instance_pose_remapped: part " + std::to_string(part) +
+                    " needs a remap of " + std::to_string(joints) + " entries, got " +
+                    std::to_string(remap_count) +
+                    ((remap && engine_matrices) ? "" : " (null pointer)"));
+  }
+  dermis::PoseJob job;
+  job.instance = instance->impl.get();
+  job.part = part;
+  job.skin_matrices = engine_matrices;
+  job.num_skin_matrices = engine_count;
+  job.joint_remap = remap;
+  if (!job.Validate()) {
+    for (size_t j = 0; j < joints; ++j) {
+      if (remap[j] < 0 || static_cast<size_t>(remap[j]) >= engine_count) {
+        return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                    "dermis_instance_pose_remapped: remap[" + std::to_string(j) +
+                        "] = " + std::to_string(remap[j]) + " is outside the engine's " +
+                        std::to_string(engine_count) + " matrices (pose unchanged)");
+      }
+    }
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_instance_pose_remapped: invalid job");
+  }
+  if (!job.Run()) {
+    return Fail(DERMIS_ERROR_INVALID_INPUT,
+                "dermis_instance_pose_remapped: a skin matrix is not finite (pose unchanged)");
+  }
+  return DERMIS_OK;
+}
+
 dermis_status dermis_evaluate(const dermis_instance* instance, const dermis_output* output,
                               size_t block_begin, size_t block_end, float* positions,
-                              size_t position_stride, float* normals, size_t normal_stride) {
+                              size_t position_stride, size_t positions_bytes, float* normals,
+                              size_t normal_stride, size_t normals_bytes) {
   if (!instance || !output)
     return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_evaluate: null handle");
+  const size_t need_p =
+      dermis_output_required_bytes(output, block_begin, block_end, position_stride);
+  if (positions && positions_bytes < need_p) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                "dermis_evaluate: the position buffer holds " + std::to_string(positions_bytes) +
+                    " bytes, blocks [" + std::to_string(block_begin) + ", " +
+                    std::to_string(std::min(block_end, dermis_output_block_count(output))) +
+                    ") with stride " + std::to_string(position_stride) + " need " +
+                    std::to_string(need_p) + " (nothing written)");
+  }
+  const size_t need_n =
+      normals ? dermis_output_required_bytes(output, block_begin, block_end, normal_stride) : 0;
+  if (normals && normals_bytes < need_n) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                "dermis_evaluate: the normal buffer holds " + std::to_string(normals_bytes) +
+                    " bytes, the range with stride " + std::to_string(normal_stride) + " needs " +
+                    std::to_string(need_n) + " (nothing written)");
+  }
   dermis::EvaluateJob job;
   job.output = output->impl.get();
   job.instance = instance->impl.get();

@@ -219,6 +219,8 @@ const char* SimdPathName(SimdPath path) {
       return "generic";
     case SimdPath::kAvx2:
       return "avx2";
+    case SimdPath::kScalar:
+      return "scalar";
     case SimdPath::kAuto:
       break;
   }

@@ -209,19 +209,38 @@ const float* RuntimeInstance::packed_patches(std::size_t p) const {
   return p < parts_.size() ? parts_[p]->packed.data() : nullptr;
 }
 
+std::size_t RuntimeInstance::memory_bytes() const {
+  // The deformers' own tables (their copies of the weights and rest positions) are not
+  // visible from here and not counted: docs/engine-integration.md says so.
+  std::size_t n = sizeof(RuntimeInstance) + parts_.capacity() * sizeof(parts_[0]);
+  for (const auto& p : parts_) {
+    n += sizeof(PartState) + p->palette.capacity() * sizeof(glm::dmat4) +
+         p->control.capacity() * sizeof(Vec3) + p->patches.capacity() * sizeof(LocalPatch) +
+         p->packed.capacity() * sizeof(float);
+  }
+  return n;
+}
+
 bool PoseJob::Validate() const {
   if (!instance || part >= instance->parts_.size()) return false;
   const std::size_t joints = instance->character().num_joints(part);
-  if (num_skin_matrices != joints) return false;
-  return joints == 0 || skin_matrices != nullptr;
+  if (joints == 0) return num_skin_matrices == 0 && !joint_remap;
+  if (!skin_matrices) return false;
+  if (!joint_remap) return num_skin_matrices == joints;
+  for (std::size_t j = 0; j < joints; ++j) {
+    if (joint_remap[j] < 0 || static_cast<std::size_t>(joint_remap[j]) >= num_skin_matrices)
+      return false;
+  }
+  return true;
 }
 
 bool PoseJob::Run() const {
   if (!Validate()) return false;
   RuntimeInstance::PartState& st = *instance->parts_[part];
   if (!st.deformer) return true;  // static: rest pose, patches already packed
-  for (std::size_t j = 0; j < num_skin_matrices; ++j) {
-    const float* m = skin_matrices + 16 * j;
+  for (std::size_t j = 0; j < st.palette.size(); ++j) {
+    const std::size_t source = joint_remap ? static_cast<std::size_t>(joint_remap[j]) : j;
+    const float* m = skin_matrices + 16 * source;
     glm::dmat4& d = st.palette[j];
     for (int c = 0; c < 4; ++c) {
       for (int r = 0; r < 4; ++r) d[c][r] = static_cast<double>(m[4 * c + r]);

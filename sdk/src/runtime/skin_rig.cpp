@@ -6,6 +6,7 @@
 #include <string>
 
 #include "dermis/runtime/character.h"
+#include "dermis/runtime/runtime.h"
 
 namespace dermis {
 namespace {
@@ -59,6 +60,47 @@ Status MakeSkinRig(const Asset& asset, Index skin, SkinRig* out) {
   const Status v = ValidateRig(rig, nullptr, 0, asset.source + ": " + SkinPointer(skin));
   if (!v.ok()) return v;
   *out = std::move(rig);
+  return Status::Ok();
+}
+
+Status RuntimeCharacter::RemapJointsByName(std::size_t p,
+                                           const std::vector<std::string_view>& engine_names,
+                                           std::vector<std::int32_t>* remap) const {
+  const std::string& file = character_.asset.source;
+  if (p >= num_parts())
+    return Status::InvalidInput(file + ": part " + std::to_string(p) + " does not exist");
+  if (engine_names.size() > static_cast<std::size_t>(INT32_MAX))
+    return Status::InvalidInput("joint remap: more than 2^31 - 1 engine joints");
+  const SkinRig* r = rig(p);
+  std::vector<std::int32_t> result(r ? r->parents.size() : 0, -1);
+  if (!r) {
+    *remap = std::move(result);
+    return Status::Ok();
+  }
+  std::map<std::string_view, std::int32_t> by_name;
+  std::map<std::string_view, bool> duplicate;
+  for (std::size_t i = 0; i < engine_names.size(); ++i) {
+    if (!by_name.emplace(engine_names[i], static_cast<std::int32_t>(i)).second)
+      duplicate[engine_names[i]] = true;
+  }
+  for (std::size_t j = 0; j < result.size(); ++j) {
+    const std::string_view name =
+        j < r->names.size() ? std::string_view(r->names[j]) : std::string_view();
+    const auto it = by_name.find(name);
+    if (name.empty() || it == by_name.end()) {
+      return Status::InvalidInput(file + ": part " + std::to_string(p) + ": skin joint " +
+                                  std::to_string(j) + " (\"" + std::string(name) +
+                                  "\") is not among the engine's " +
+                                  std::to_string(engine_names.size()) + " joints");
+    }
+    if (duplicate.count(name)) {
+      return Status::InvalidInput(file + ": part " + std::to_string(p) +
+                                  ": the engine lists joint \"" + std::string(name) +
+                                  "\" more than once");
+    }
+    result[j] = it->second;
+  }
+  *remap = std::move(result);
   return Status::Ok();
 }
 

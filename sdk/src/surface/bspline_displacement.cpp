@@ -299,4 +299,16 @@ void BsplineDisplacement::EvaluateLevels(Index vertex, Vec2 z, int levels, doubl
   *gradient = Vec2(fx, fy);
 }
 
+std::size_t BsplineDisplacement::memory_bytes() const {
+  const BsplineDisplacementData& d = data_;
+  return sizeof(BsplineDisplacement) + d.half_extent.capacity() * sizeof(double) +
+         d.num_levels.capacity() + d.offsets.capacity() * sizeof(std::int64_t) +
+         d.level_counts.capacity() * sizeof(std::int32_t) +
+         d.nodes.capacity() * sizeof(std::uint32_t) + d.values.capacity() * sizeof(float) +
+         (chart_level_.capacity() + level_value_.capacity() + level_node_.capacity() +
+          level_row_.capacity()) *
+             sizeof(std::int64_t) +
+         row_start_.capacity() * sizeof(std::int32_t);
+}
+
 }  // namespace dermis

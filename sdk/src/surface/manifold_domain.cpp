@@ -156,4 +156,14 @@ bool ManifoldDomain::Transition(Index i, Vec2 z, Index j, Vec2* zj) const {
   return false;
 }
 
+std::size_t ManifoldDomain::memory_bytes() const {
+  return sizeof(ManifoldDomain) + data_.topology.memory_bytes() +
+         data_.vertex_kind.capacity() * sizeof(VertexKind) +
+         (data_.operator_offsets.capacity() + data_.vertex_operator.capacity() +
+          ring_offsets_.capacity() + ring_vertices_.capacity()) *
+             sizeof(Index) +
+         data_.operator_values.capacity() * sizeof(double) +
+         charts_.capacity() * sizeof(ChartParams);
+}
+
 }  // namespace dermis

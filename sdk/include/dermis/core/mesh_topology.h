@@ -10,6 +10,7 @@
 /// on the boundary, and the ring is open.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -57,6 +58,8 @@ class MeshTopology {
   Index num_vertices() const { return num_vertices_; }
   Index num_faces() const { return static_cast<Index>(face_offsets_.size()) - 1; }
   Index num_halfedges() const { return static_cast<Index>(face_vertices_.size()); }
+  /// Bytes held by the topology's arrays.
+  std::size_t memory_bytes() const;
   Index num_edges() const { return static_cast<Index>(edge_halfedge_.size()); }
   /// True when every face has exactly 4 corners.
   bool is_all_quads() const { return all_quads_; }

@@ -27,15 +27,16 @@ namespace dermis {
 /// Instruction set of the evaluation kernel.
 enum class SimdPath : std::uint8_t {
   kAuto = 0,     ///< The best one this CPU has.
-  kGeneric = 1,  ///< Portable vector code (SSE2 on x86-64).
+  kGeneric = 1,  ///< The portable SIMD path: SSE2 on x86-64, NEON on aarch64, else scalar.
   kAvx2 = 2,     ///< AVX2 + FMA (x86-64 only).
+  kScalar = 3,   ///< The same kernel lane by lane in plain C++ (every CPU; the fallback).
 };
 
 /// The path kAuto resolves to on this CPU.
 SimdPath BestSimdPath();
 /// Whether this CPU (and build) can run `path`.
 bool SimdPathAvailable(SimdPath path);
-/// "generic", "avx2" (kAuto: the resolved one).
+/// "generic", "avx2", "scalar" (kAuto: the resolved one).
 const char* SimdPathName(SimdPath path);
 
 /// Packs `count` local patches into the kernel's float layout (27 coefficients and the

@@ -61,6 +61,14 @@ class RuntimeCharacter {
   /// surface locations: the output order of an OutputKind::kBound output.
   const std::vector<BoundVertexRef>& bound_vertices(std::size_t p) const;
   const std::vector<SampleLocation>& bound_locations(std::size_t p) const;
+  /// Bytes the character holds (surfaces, displacements, rigs, bindings, the source asset as
+  /// loaded), excluding outputs and instances.
+  std::size_t memory_bytes() const;
+  /// Maps an engine's joint order onto part p's skin by name: remap[j] (num_joints(p) entries,
+  /// resized) = index in `engine_names` of skin joint j's name. Fails naming the first skin
+  /// joint the engine lacks, or an engine name listed twice that a skin joint needs.
+  Status RemapJointsByName(std::size_t p, const std::vector<std::string_view>& engine_names,
+                           std::vector<std::int32_t>* remap) const;
 
  private:
   RuntimeCharacter() = default;
@@ -102,6 +110,8 @@ class RuntimeOutput {
   /// primitives' indices apply).
   const std::vector<std::uint32_t>& triangles() const { return triangles_; }
   const EvaluationPlan& plan() const { return plan_; }
+  /// Bytes the output holds (plan and triangles).
+  std::size_t memory_bytes() const { return plan_.memory_bytes() + triangles_.capacity() * 4; }
 
  private:
   RuntimeOutput() = default;
@@ -130,6 +140,8 @@ class RuntimeInstance {
   /// Part p's current control vertices and packed patches (kPackedPatchStride floats each).
   const Vec3* control_positions(std::size_t p) const;
   const float* packed_patches(std::size_t p) const;
+  /// Bytes the instance holds (deformer state, control vertices, patches, palettes).
+  std::size_t memory_bytes() const;
 
  private:
   friend struct PoseJob;
@@ -150,8 +162,13 @@ struct PoseJob {
   /// static part takes none and stays in its rest pose.
   const float* skin_matrices = nullptr;
   std::size_t num_skin_matrices = 0;
+  /// Optional: the engine's joint order. When set, skin_matrices holds the engine's palette of
+  /// num_skin_matrices matrices (any count) and skin joint j takes matrix joint_remap[j]; the
+  /// array has num_joints(part) entries (RemapJointsByName()).
+  const std::int32_t* joint_remap = nullptr;
 
-  /// True if the job can run: instance set, part in range, the right matrix count.
+  /// True if the job can run: instance set, part in range, the right matrix count (with a
+  /// remap: every remapped index inside the palette).
   bool Validate() const;
   /// Validate(), then the pose. False (pose unchanged) if invalid or a matrix is not finite.
   bool Run() const;

@@ -91,6 +91,8 @@ class BsplineDisplacement final : public Displacement {
   std::int64_t num_coefficients() const { return static_cast<std::int64_t>(data_.values.size()); }
   /// Stored coefficients of level `level` over all charts (0 beyond the deepest chart).
   std::int64_t level_coefficients(int level) const;
+  /// Bytes held (stored data and the derived index).
+  std::size_t memory_bytes() const;
 
  private:
   BsplineDisplacement() = default;

@@ -60,6 +60,8 @@ class ManifoldDomain {
   const ChartParams& chart(Index v) const { return charts_[v]; }
   VertexKind vertex_kind(Index v) const { return data_.vertex_kind[v]; }
   const DomainData& data() const { return data_; }
+  /// Bytes held by the domain (topology, operators, charts, patch rings).
+  std::size_t memory_bytes() const;
 
   /// The control vertices whose positions determine vertex v's patch, in operator column
   /// order: for each ring face i the edge neighbour at the end of its c-axis, then its diagonal

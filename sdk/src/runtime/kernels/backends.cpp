@@ -12,6 +12,7 @@ bool HasAvx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports
 #endif
 
 constexpr Backend kBackends[] = {
+    {SimdPath::kScalar, EvaluateBlocksScalar, Always},
     {SimdPath::kGeneric, EvaluateBlocksGeneric, Always},
 #if defined(__x86_64__)
     {SimdPath::kAvx2, EvaluateBlocksAvx2, HasAvx2},

@@ -4,74 +4,30 @@
 // data of an EvaluationPlan and the pose's packed patch coefficients.
 //
 // Included by one translation unit per instruction set (eval_kernel_generic.cpp,
-// eval_kernel_avx2.cpp), each compiled with its own flags. Everything here therefore has
-// internal linkage (an anonymous namespace) and uses only compiler built-ins and intrinsics,
-// so no inline function of external linkage is ever compiled with two sets of flags.
+// eval_kernel_avx2.cpp), each compiled with its own flags, over the portable SIMD layer
+// simd.h (intrinsics per instruction set, a scalar fallback; no compiler vector extensions).
+// Everything here therefore has internal linkage (an anonymous namespace), so no inline
+// function of external linkage is ever compiled with two sets of flags.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 
 #include "dermis/runtime/plan_layout.h"
-
-#if defined(__x86_64__) || defined(__i386__)
-#include <immintrin.h>
-#endif
+#include "runtime/kernels/simd.h"
 
 namespace dermis {
 namespace plan_kernel {
 namespace {
 
-typedef float F __attribute__((vector_size(kPlanLanes * sizeof(float))));
-typedef std::int32_t I __attribute__((vector_size(kPlanLanes * sizeof(std::int32_t))));
+using simd::F;
+using simd::Load;
+using simd::M;
+using simd::Select;
+using simd::Splat;
+using simd::Sqrt;
 
-#define DERMIS_INLINE inline __attribute__((always_inline))
-
-DERMIS_INLINE F Splat(float x) {
-  F r;
-  for (int i = 0; i < kPlanLanes; ++i) r[i] = x;
-  return r;
-}
-
-DERMIS_INLINE F Load(const float* p) {
-  F r;
-  __builtin_memcpy(&r, p, sizeof(F));
-  return r;
-}
-
-// Square root per lane: vsqrtps where the target has it.
-DERMIS_INLINE F Sqrt(F x) {
-  F r;
-#if defined(__AVX__)
-  for (int i = 0; i < kPlanLanes; i += 8) {
-    __m256 v;
-    __builtin_memcpy(&v, reinterpret_cast<const float*>(&x) + i, sizeof(v));
-    v = _mm256_sqrt_ps(v);
-    __builtin_memcpy(reinterpret_cast<float*>(&r) + i, &v, sizeof(v));
-  }
-#elif defined(__SSE__)
-  for (int i = 0; i < kPlanLanes; i += 4) {
-    __m128 v;
-    __builtin_memcpy(&v, reinterpret_cast<const float*>(&x) + i, sizeof(v));
-    v = _mm_sqrt_ps(v);
-    __builtin_memcpy(reinterpret_cast<float*>(&r) + i, &v, sizeof(v));
-  }
-#else
-  for (int i = 0; i < kPlanLanes; ++i) r[i] = __builtin_sqrtf(x[i]);
-#endif
-  return r;
-}
-
-// a ? b : c per lane, with a a comparison result (all bits set or clear).
-DERMIS_INLINE F Select(I mask, F b, F c) {
-  I bi, ci;
-  __builtin_memcpy(&bi, &b, sizeof(I));
-  __builtin_memcpy(&ci, &c, sizeof(I));
-  const I ri = (bi & mask) | (ci & ~mask);
-  F r;
-  __builtin_memcpy(&r, &ri, sizeof(F));
-  return r;
-}
+#define DERMIS_INLINE DERMIS_SIMD_INLINE
 
 struct V3 {
   F x, y, z;
@@ -127,7 +83,7 @@ DERMIS_INLINE void AccumulateCorner(const float* patch, const float* data, V3* s
   const F l2 = Dot(nr, nr);
   // The patch is regular where |px x py| > 1e-6 |px| |py| (float's share of local_patch.cpp's
   // test); elsewhere the frame is the fallback normal with zero derivatives.
-  const I ok = (l2 > Splat(1e-12f) * Dot(px, px) * Dot(py, py)) & (l2 > Splat(1e-30f));
+  const M ok = (l2 > Splat(1e-12f) * Dot(px, px) * Dot(py, py)) & (l2 > Splat(1e-30f));
   const F inv = Splat(1.0f) / Sqrt(Select(ok, l2, Splat(1.0f)));
   const V3 fb{Splat(patch[27]), Splat(patch[28]), Splat(patch[29])};
   const V3 n{Select(ok, nr.x * inv, fb.x), Select(ok, nr.y * inv, fb.y),
@@ -181,23 +137,31 @@ DERMIS_INLINE void EvaluateBlocks(const PlanView& plan, const float* patches, st
     }
     const V3 nr = Cross(su, sv);
     const F l2 = Dot(nr, nr);
-    const I ok = l2 > Splat(1e-30f);
+    const M ok = l2 > Splat(1e-30f);
     const F inv = Splat(1.0f) / Sqrt(Select(ok, l2, Splat(1.0f)));
     const V3 n = Scale(nr, inv);
+    float lanes[6][kPlanLanes];
+    simd::Store(s.x, lanes[0]);
+    simd::Store(s.y, lanes[1]);
+    simd::Store(s.z, lanes[2]);
+    simd::Store(n.x, lanes[3]);
+    simd::Store(n.y, lanes[4]);
+    simd::Store(n.z, lanes[5]);
+    const unsigned ok_bits = simd::Bits(ok);
     for (int i = 0; i < block.count; ++i) {
       const std::size_t index = static_cast<std::size_t>(block.index[i]);
       float* pos = reinterpret_cast<float*>(reinterpret_cast<unsigned char*>(out.positions) +
                                             index * out.position_stride);
-      pos[0] = s.x[i];
-      pos[1] = s.y[i];
-      pos[2] = s.z[i];
+      pos[0] = lanes[0][i];
+      pos[1] = lanes[1][i];
+      pos[2] = lanes[2][i];
       if (out.normals) {
         float* nrm = reinterpret_cast<float*>(reinterpret_cast<unsigned char*>(out.normals) +
                                               index * out.normal_stride);
-        if (ok[i]) {
-          nrm[0] = n.x[i];
-          nrm[1] = n.y[i];
-          nrm[2] = n.z[i];
+        if ((ok_bits >> i) & 1u) {
+          nrm[0] = lanes[3][i];
+          nrm[1] = lanes[4][i];
+          nrm[2] = lanes[5][i];
         } else {
           const float* fb =
               patches + static_cast<std::size_t>(block.dominant[i]) * kPackedPatchStride + 27;

@@ -1,5 +1,6 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The evaluation kernel (eval_kernel.h) compiled for one instruction set: avx2.
+#define DERMIS_SIMD_AVX2 1
 #include "runtime/kernels/eval_kernel.h"
 #include "runtime/kernels/kernels.h"
 

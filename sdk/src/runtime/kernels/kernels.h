@@ -33,6 +33,8 @@ const Backend* Backends(std::size_t* count);
 const Backend* FindBackend(SimdPath path);
 
 /// Entry points, one per backend file.
+void EvaluateBlocksScalar(const PlanView& plan, const float* patches, std::size_t begin,
+                          std::size_t end, const PlanOutputBuffers& out);
 void EvaluateBlocksGeneric(const PlanView& plan, const float* patches, std::size_t begin,
                            std::size_t end, const PlanOutputBuffers& out);
 #if defined(__x86_64__)

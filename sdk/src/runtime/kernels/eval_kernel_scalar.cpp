@@ -1,0 +1,15 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The evaluation kernel (eval_kernel.h) compiled without SIMD intrinsics (simd.h's scalar
+// lanes): the fallback that runs on every CPU.
+#define DERMIS_SIMD_SCALAR 1
+#include "runtime/kernels/eval_kernel.h"
+#include "runtime/kernels/kernels.h"
+
+namespace dermis::kernels {
+
+void EvaluateBlocksScalar(const PlanView& plan, const float* patches, std::size_t begin,
+                          std::size_t end, const PlanOutputBuffers& out) {
+  plan_kernel::EvaluateBlocks(plan, patches, begin, end, out);
+}
+
+}  // namespace dermis::kernels
