@@ -234,7 +234,10 @@ int RunFitCharacter(const FitArgs& a) {
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
-    s = WriteFileAtomically(a.report, CharacterReportJson(a, ch, report).dump(2) + "\n");
+    s = WriteFileAtomically(a.report,
+                            CharacterReportJson(a, ch, report)
+                                    .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
+                                "\n");
     if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet) {
@@ -306,7 +309,9 @@ int RunFit(const FitArgs& a) {
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
-    s = WriteFileAtomically(a.report, ReportJson(a, report).dump(2) + "\n");
+    s = WriteFileAtomically(
+        a.report,
+        ReportJson(a, report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet && !report.control_mesh.fallback.empty()) {

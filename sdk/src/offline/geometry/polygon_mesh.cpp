@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "dermis/core/limits.h"
 #include "dermis/core/mesh_topology.h"
 
 namespace dermis {
@@ -18,6 +19,12 @@ Status ValidatePolygonMesh(const PolygonMesh& mesh) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
       return Status::InvalidInput(where + ": " + mesh.VertexName(v) +
                                   " has a non-finite coordinate");
+    }
+    if (std::abs(p.x) > limits::kMaxCoordinate || std::abs(p.y) > limits::kMaxCoordinate ||
+        std::abs(p.z) > limits::kMaxCoordinate) {
+      return Status::InvalidInput(where + ": " + mesh.VertexName(v) +
+                                  " has a coordinate of magnitude above 1e12 (products of such "
+                                  "coordinates overflow; rescale the model)");
     }
   }
   ElementNamer namer;
