@@ -177,6 +177,7 @@ struct Settings {
   double smoothing = -1.0;  // -1: FitOptions' default
   double samples = -1.0;    // -1: CharacterFitOptions' default
   double max_turn = -1.0;   // -1: CharacterFitOptions' default
+  double level_smoothing = -1.0;  // -1: the adaptive fit's default
   bool Row(const char* name) const { return rows.find(name) != std::string::npos; }
 };
 
@@ -187,6 +188,7 @@ void ApplySettings(const Settings& st, FitOptions* options) {
   if (st.finest_passes >= 1) options->displacement.finest_passes = st.finest_passes;
   if (st.smoothing >= 0.0) options->displacement.smoothing = st.smoothing;
   if (st.mba) options->displacement.method = DisplacementMethod::kMba;
+  if (st.level_smoothing >= 0.0) options->displacement.adaptive.smoothing = st.level_smoothing;
 }
 
 void PrintControlMesh(const char* name, const FitReport& r) {
@@ -474,7 +476,7 @@ int RunCharacters(const Settings& st) {
     Asset asset;
     Status s = ImportGltf(path, &asset);
     CharacterFitOptions options;
-    options.fit.control_method = st.method;
+    ApplySettings(st, &options.fit);
     if (st.samples >= 0.0) options.samples_per_control_edge = st.samples;
     if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
     Character ch;
@@ -573,6 +575,8 @@ int main(int argc, char** argv) {
       st.smoothing = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--detail") == 0) {
       st.detail = true;
+    } else if (std::strcmp(argv[i], "--level-smoothing") == 0 && i + 1 < argc) {
+      st.level_smoothing = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--mba") == 0) {
       st.mba = true;
     } else if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {

@@ -689,7 +689,15 @@ TEST_CASE("gpu: the C API evaluates like dermis_evaluate") {
             DERMIS_OK);
     const Difference d = Compare(gpu_out, cpu);
     INFO("part " << part << ": " << d);
-    CHECK(d.ok());
+    // dermis_evaluate runs the fastest CPU kernel: as against it in Versus, positions are held
+    // to the bound and normals are not (AVX2's fused multiply-adds move a normal where the
+    // derivatives nearly vanish; the shader equals the portable kernel, checked above).
+    if (BestSimdPath() == SimdPath::kGeneric) {
+      CHECK(d.ok());
+    } else {
+      CHECK(d.finite);
+      CHECK(d.position < 1e-5);
+    }
     // The accessors an engine with its own device uploads from.
     const void* blocks = nullptr;
     const float* data = nullptr;

@@ -117,8 +117,10 @@ TEST_CASE("runtime: the fast path equals the scalar reference") {
 TEST_CASE("runtime: sparse displacement levels, whole and truncated, on the fast path") {
   // The plan precomputes d(z) per sample through the Displacement interface: the additive
   // sparse levels of .dsurf version 3 and their truncation give the scalar evaluator's surface.
-  ControlSurface cs = test::Build(test::Builtin("torus"));
+  const DisplacedSurface cs = test::SurfaceFixture("torus");
   const ManifoldDomain& domain = *cs.domain;
+  std::vector<LocalPatch> patches(cs.rest_positions.size());
+  domain.FitPatches(cs.rest_positions.data(), patches.data());
   test::Lcg rng(12);
   BsplineDisplacementData d;
   d.form = BsplineLevelForm::kAdditive;
@@ -146,7 +148,7 @@ TEST_CASE("runtime: sparse displacement levels, whole and truncated, on the fast
   for (const Displacement* dp :
        {static_cast<const Displacement*>(disp.get()), static_cast<const Displacement*>(&two)}) {
     for (SimdPath path : AvailablePaths()) {
-      const Compared c = CompareWithScalar(domain, cs.patches, dp, samples, path);
+      const Compared c = CompareWithScalar(domain, patches, dp, samples, path);
       INFO(SimdPathName(path) << (dp == &two ? " two levels" : " all levels") << ": position "
                               << c.position << " normal " << c.normal);
       CHECK(c.position < 1e-5);

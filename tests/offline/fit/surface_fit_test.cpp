@@ -339,13 +339,13 @@ TEST_CASE("fit: the Stanford bunny with 540 control vertices") {
   INFO("E1 " << report.error.mean << " held out " << report.error.holdout_mean << ", "
              << report.coefficients << " coefficients");
   CHECK(std::abs(report.control_vertices - 540) <= 10);
-  // The adaptive displacement fit (docs/fitting.md): E1 1.43e-4 and held out 3.17e-4 with 2.7
-  // coefficients per point, where the dense per-chart lattices took 14.8 per point for E1
-  // 1.45e-4 and held out 3.29e-4. The held-out error of every setting tried stays above
-  // 3.1e-4 (the scan's noise, docs/fitting.md).
-  CHECK(report.error.mean <= 1.55e-4);
-  CHECK(report.error.holdout_mean <= 3.35e-4);
-  CHECK(report.error.holdout_mean <= 2.5 * report.error.mean);
+  // The remeshed control mesh with adaptive displacement levels (docs/fitting.md): E1 8.7e-5 and
+  // held out 2.59e-4 with 2.7 coefficients per point, where the simplified control mesh with
+  // dense per-chart lattices took 14.8 per point for E1 1.45e-4 and held out 3.29e-4. The
+  // held-out error stays near the scan's noise (docs/fitting.md), so the ratio is loose.
+  CHECK(report.error.mean <= 1.0e-4);
+  CHECK(report.error.holdout_mean <= 2.9e-4);
+  CHECK(report.error.holdout_mean <= 3.3 * report.error.mean);
   CHECK(report.coefficients <= 3 * report.points);
   CHECK(report.coefficients_per_point ==
         Approx(static_cast<double>(report.coefficients) / static_cast<double>(report.points)));
