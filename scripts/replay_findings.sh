@@ -48,7 +48,7 @@ check() {
     why="exit $rc"
   elif [[ $rc == 1 ]] && [[ -n $(ls -A "$WORK/out") ]]; then
     why="failed but left $(ls "$WORK/out")"
-  elif [[ $rc == 1 ]] && ! grep -qiE 'error|invalid' "$WORK/log"; then
+  elif [[ $rc == 1 ]] && ! grep -qiE 'error|invalid|"valid": false' "$WORK/log"; then
     why="failed without an error message"
   fi
   runs=$((runs + 1))

@@ -50,7 +50,7 @@ foreach(cmd validate tessellate fit)
   elseif(cmd STREQUAL fit)
     set(extra -o ${OUT}/x.dsurf)
   endif()
-  expect_run(1 "huge_coords\\.obj:1: .*magnitude above 1e12" ${DERMIS} ${cmd}
+  expect_run(1 "huge_coords\\.obj: vertex 0 \\(line 1\\) has a coordinate .*magnitude above 1e12" ${DERMIS} ${cmd}
              ${IN}/obj/huge_coords.obj ${extra})
 endforeach()
 # 7: a face of 20,000 vertices with a repeated corner: found (and in linear time).

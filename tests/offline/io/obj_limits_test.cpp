@@ -7,6 +7,7 @@
 #include <string>
 
 #include "dermis/core/mesh_topology.h"
+#include "dermis/offline/build/domain_builder.h"
 #include "dermis/offline/geometry/polygon_mesh.h"
 #include "dermis/offline/io/obj_io.h"
 
@@ -54,16 +55,25 @@ TEST_CASE("obj: extreme indices are refused with the line, never wrapped") {
   CHECK(m.face_vertices == std::vector<Index>{0, 1, 2});
 }
 
-TEST_CASE("obj: coordinates whose products overflow are refused") {
-  const std::string e = ObjError("v -1e308 0 0\nv 1e308 0 0\nv 0 1e308 0\nf 1 2 3\n");
-  INFO(e);
-  CHECK(e.find("t.obj:1:") == 0);
-  CHECK(e.find("above 1e12") != std::string::npos);
+TEST_CASE("obj: coordinates whose products overflow are refused before geometry") {
+  // The reader keeps every finite number exactly; what computes with the mesh refuses
+  // magnitudes whose products overflow (1e308 turned every normal into (0,0,1)).
   PolygonMesh m;
-  REQUIRE(ParseObj("v -1e11 0 0\nv 1e11 0 0\nv 0 1e11 0\nf 1 2 3\n", "t.obj", &m).ok());
-  m.positions[2].y = 1e13;  // built otherwise: the polygon-mesh checks say the same
-  const Status s = ValidatePolygonMesh(m);
-  CHECK(s.message().find("above 1e12") != std::string::npos);
+  REQUIRE(
+      ParseObj("v -1e308 0 0\nv 1e308 0 0\nv 0 1e308 0\nv 0 0 1\nf 1 2 3 4\n", "t.obj", &m).ok());
+  CHECK(m.positions[1].x == 1e308);
+  Status s = CheckCoordinateRange(m);
+  INFO(s.message());
+  CHECK(s.message() ==
+        "t.obj: vertex 0 (line 1) has a coordinate that is not finite or of magnitude above 1e12 "
+        "(products of such coordinates overflow; rescale the model)");
+  ControlSurface cs;
+  s = BuildControlSurface(m, DomainOptions{}, &cs);
+  CHECK(s.message().find("magnitude above 1e12") != std::string::npos);
+  CHECK(cs.domain == nullptr);
+  // 1e11 is fine.
+  REQUIRE(ParseObj("v -1e11 0 0\nv 1e11 0 0\nv 0 1e11 0\nv 0 0 1\nf 1 2 3 4\n", "t.obj", &m).ok());
+  CHECK(CheckCoordinateRange(m).ok());
 }
 
 TEST_CASE("obj: a face of 100,000 vertices is read, a repeated corner found") {

@@ -12,7 +12,6 @@
 #include <sstream>
 
 #include "dermis/core/file_io.h"
-#include "dermis/core/limits.h"
 #include "offline/io/text_tokens.h"
 
 namespace dermis {
@@ -98,12 +97,6 @@ Status ParseVertex(const std::vector<std::string_view>& tokens, const std::strin
     if (!std::isfinite(x)) {
       return LineError(name, line,
                        "vertex coordinate '" + std::string(tokens[1 + k]) + "' is not finite");
-    }
-    if (std::abs(x) > limits::kMaxCoordinate) {
-      return LineError(name, line,
-                       "vertex coordinate '" + std::string(tokens[1 + k]) +
-                           "' has a magnitude above 1e12 (products of such coordinates "
-                           "overflow; rescale the model)");
     }
     p[k] = x;
   }

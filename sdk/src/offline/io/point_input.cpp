@@ -2,9 +2,7 @@
 // Fit input: a scan, a mesh or a point cloud (paper section 4 fits point clouds).
 #include "dermis/offline/io/point_input.h"
 
-#include <cmath>
-
-#include "dermis/core/limits.h"
+#include "dermis/offline/geometry/polygon_mesh.h"
 #include "dermis/offline/io/scan_importers.h"
 
 namespace dermis {
@@ -21,15 +19,8 @@ Status ReadFitInput(const std::string& path, PolygonMesh* mesh, Index* dropped,
   *dropped = 0;
   if (mesh->positions.empty())
     return Status::InvalidInput(path + ": no vertices (empty point cloud)");
-  for (size_t v = 0; v < mesh->positions.size(); ++v) {
-    const Vec3& p = mesh->positions[v];
-    if (!(std::abs(p.x) <= limits::kMaxCoordinate && std::abs(p.y) <= limits::kMaxCoordinate &&
-          std::abs(p.z) <= limits::kMaxCoordinate)) {
-      return Status::InvalidInput(path + ": " + mesh->VertexName(static_cast<Index>(v)) +
-                                  " has a non-finite coordinate or one of magnitude above 1e12 "
-                                  "(rescale the model)");
-    }
-  }
+  const Status range = CheckCoordinateRange(*mesh);
+  if (!range.ok()) return range;
   if (mesh->num_faces() > 0) *dropped = CompactUnusedVertices(mesh);
   return Status::Ok();
 }
