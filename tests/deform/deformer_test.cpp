@@ -694,5 +694,65 @@ TEST_CASE("sweep chains: a joint too sharp or too short for its skin is cut, not
   CHECK(chains.size() == 2);
 }
 
+TEST_CASE("sweep: skin off the bone axis weighted to one joint moves rigidly with it") {
+  // The two cylinders' second capsule: j0 at the origin, j1 at (0, 1, 0) (a skinned leaf), and a
+  // capsule of radius 0.5 along y in [-0.5, 2.5] at x = 3, three units off the bone axis,
+  // weighted by a smoothstep over y in [0.7, 1.3]. Its skin leans the virtual end bone 76
+  // degrees toward it; swept through that joint, the skin on j0 alone was carried by j1's arc
+  // and volume bump (up to 3 units at a 90 degree bend). The joint is cut instead.
+  SkinRig rig;
+  rig.parents = {-1, 0};
+  rig.bind = {glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), {0, 1, 0})};
+  std::vector<Vec3> x;
+  std::vector<VertexWeights> w;
+  for (int r = 0; r <= 24; ++r) {
+    const double y = -0.5 + 3.0 * r / 24;
+    const double rad = std::sqrt(std::max(0.0, 0.25 - std::pow(std::max({0.0, -y, y - 2.0}), 2)));
+    for (int k = 0; k < 16; ++k) {
+      const double a = 2.0 * kPi * k / 16;
+      x.push_back({3.0 + rad * std::cos(a), y, rad * std::sin(a)});
+      const double u = std::clamp((y - 0.7) / 0.6, 0.0, 1.0);
+      w.push_back(Two(0, 1, static_cast<float>(u * u * (3 - 2 * u))));
+    }
+  }
+  std::unique_ptr<Deformer> sweep;
+  REQUIRE(
+      MakeSweepDeformer(rig, x.data(), nullptr, w.data(), x.size(), SweepOptions{}, &sweep).ok());
+  const glm::dmat4 about_j1 = glm::translate(glm::dmat4(1.0), {0, 1, 0}) *
+                              glm::rotate(glm::dmat4(1.0), kPi / 2, {0, 0, 1}) *
+                              glm::translate(glm::dmat4(1.0), {0, -1, 0});
+  const glm::dmat4 rigid = glm::translate(glm::dmat4(1.0), {1, -2, 3}) *
+                           glm::rotate(glm::dmat4(1.0), 2.5, glm::normalize(Vec3(1, 2, 3)));
+  for (const glm::dmat4& root : {glm::dmat4(1.0), rigid}) {
+    for (const bool bent : {false, true}) {
+      INFO((root == rigid ? "moved" : "in place") << (bent ? ", bent" : ", straight"));
+      const std::vector<glm::dmat4> palette = {root, bent ? root * about_j1 : root};
+      REQUIRE(sweep->SetPose(palette.data()).ok());
+      std::vector<Vec3> p(x.size());
+      sweep->Deform(0, p.size(), p.data(), nullptr);
+      // The vertices on one joint alone move rigidly with it.
+      std::size_t checked = 0;
+      double worst = 0.0;
+      for (std::size_t v = 0; v < x.size(); ++v) {
+        const float w1 = w[v].weights[1];
+        if (w1 != 0.0f && w1 != 1.0f) continue;
+        const glm::dmat4& m = palette[w1 == 0.0f ? 0 : 1];
+        worst = std::max(worst, glm::length(p[v] - Vec3(m * glm::dvec4(x[v], 1.0))));
+        ++checked;
+      }
+      CHECK(checked > 300);
+      CHECK(worst < 1e-9);
+    }
+  }
+  // The chains: j0 -> j1 ends at the cut; j1 heads its own, with the virtual end.
+  std::vector<SweepChain> chains;
+  REQUIRE(BuildSweepChains(rig, x.data(), w.data(), x.size(), SweepOptions{}, &chains).ok());
+  REQUIRE(chains.size() == 2);
+  CHECK(chains[0].joints == std::vector<Index>{0, 1});
+  CHECK_FALSE(chains[0].virtual_end);
+  CHECK(chains[1].joints == std::vector<Index>{1});
+  CHECK(chains[1].virtual_end);
+}
+
 }  // namespace
 }  // namespace dermis

@@ -148,7 +148,7 @@ Status BuildSweepChains(const SkinRig& rig, const Vec3* rest, const VertexWeight
     const Vec3 t1 = glm::normalize(b - a), t2 = glm::normalize(c - b);
     const double theta = std::atan2(glm::length(glm::cross(t1, t2)), glm::dot(t1, t2));
     const double shorter = std::min(glm::length(b - a), glm::length(c - b));
-    std::vector<double> dist;
+    std::vector<double> dist, far;
     for (std::size_t v = 0; v < count; ++v) {
       // The skin of these two bones: vertices with at least half their weight on P, J or the
       // joint after J (not the torso beside a hanging arm).
@@ -166,8 +166,13 @@ Status BuildSweepChains(const SkinRig& rig, const Vec3* rest, const VertexWeight
       const Vec3 q1 = a + f1 * (b - a), q2 = b + f2 * (c - b);
       const double d1 = glm::length(x - q1), d2 = glm::length(x - q2);
       const Vec3 q = d1 < d2 ? q1 : q2;
-      if (glm::length(q - b) <= 0.5 * shorter) dist.push_back(std::min(d1, d2));
+      (glm::length(q - b) <= 0.5 * shorter ? dist : far).push_back(std::min(d1, d2));
     }
+    // None of that skin around the joint (all of it nearest to a far part of a bone: skin well
+    // off the bone axis, toward which a virtual end bone leans): its radius is that of all the
+    // bones' skin, else the sweep would carry it through the joint's arc as if it lay on the
+    // bone.
+    if (dist.empty()) dist.swap(far);
     if (dist.empty()) continue;
     std::sort(dist.begin(), dist.end());
     const double radius = dist[std::min(
