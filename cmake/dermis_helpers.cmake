@@ -10,6 +10,16 @@ function(dermis_set_warnings target)
                                              -fno-sanitize-recover=all)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
+  if(DERMIS_SANITIZE_THREAD)
+    target_compile_options(${target} PRIVATE -fsanitize=thread -fno-omit-frame-pointer)
+    target_link_options(${target} PRIVATE -fsanitize=thread)
+  endif()
+  if(DERMIS_BUILD_FUZZERS)
+    # libFuzzer coverage, ASan and UBSan in every library the harnesses link (tests/fuzz).
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link,address,undefined
+                                             -fno-omit-frame-pointer -fno-sanitize-recover=all -g)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
 endfunction()
 
 # dermis_add_library(NAME ALIAS SOURCES...): a static library dermis_NAME with alias dermis::NAME.

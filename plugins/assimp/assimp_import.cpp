@@ -45,10 +45,13 @@
 #include <iterator>
 #include <map>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "dermis/asset/asset_validate.h"
+#include "dermis/core/file_io.h"
+#include "dermis/core/limits.h"
 #include "dermis/core/path.h"
 #include "dermis/plugins/assimp.h"
 
@@ -561,6 +564,66 @@ class Converter {
   std::vector<Index> mesh_skin_;
 };
 
+// XML nesting depth of `text` (elements only; comments, CDATA, declarations and processing
+// instructions skipped), stopping once it passes `limit`.
+int XmlDepth(std::string_view text, int limit) {
+  int depth = 0, deepest = 0;
+  for (std::size_t i = 0; i < text.size() && deepest <= limit; ++i) {
+    if (text[i] != '<' || i + 1 >= text.size()) continue;
+    const char c = text[i + 1];
+    if (c == '!' || c == '?') {
+      const char* end = text.compare(i, 4, "<!--") == 0        ? "-->"
+                        : text.compare(i, 9, "<![CDATA[") == 0 ? "]]>"
+                                                               : ">";
+      const std::size_t e = text.find(end, i + 2);
+      if (e == std::string_view::npos) break;
+      i = e;
+      continue;
+    }
+    if (c == '/') {
+      --depth;
+      continue;
+    }
+    const std::size_t close = text.find('>', i + 1);
+    if (close == std::string_view::npos) break;
+    if (text[close - 1] != '/') deepest = std::max(deepest, ++depth);
+    i = close;
+  }
+  return deepest;
+}
+
+// What Assimp is not given: files of an extension it does not list (it would try every
+// importer on their content, and Assimp 5.2 leaks memory in several of them on bad input),
+// 3MF (Assimp 5.2's 3MF importer leaks on failed imports), and XML nested deeper than
+// limits::kMaxXmlDepth (its Collada reader recurses per node and overflows the stack).
+Status CheckBeforeAssimp(const std::string& path, const std::string& ext,
+                         const Assimp::Importer& importer) {
+  if (ext.empty() || !importer.IsExtensionSupported(ext)) {
+    return Status::Unsupported(
+        path + ": no importer reads '" + (ext.empty() ? std::string("(no extension)") : ext) +
+        "' files (glTF, OBJ, PLY and the formats Assimp lists by extension)");
+  }
+  if (ext == ".3mf") {
+    return Status::Unsupported(path +
+                               ": 3MF is not read (Assimp 5.2's 3MF importer leaks memory on bad "
+                               "files; docs/reliability.md)");
+  }
+  std::string bytes;
+  Status s = ReadFileBytes(path, "a model file", &bytes);
+  if (!s.ok()) return s;
+  // XML by extension (the formats Assimp reads as XML) or by its declaration near the start.
+  static const char* const kXml[] = {".dae", ".xml", ".x3d", ".x3db", ".irr",     ".irrmesh",
+                                     ".xgl", ".zgl", ".amf", ".ogex", ".mesh.xml"};
+  const std::string head = AsciiLower(std::string_view(bytes).substr(0, 1024));
+  bool xml = head.find("<?xml") != std::string::npos || head.find("<collada") != std::string::npos;
+  for (const char* e : kXml) xml = xml || ext == e;
+  if (xml && XmlDepth(bytes, limits::kMaxXmlDepth) > limits::kMaxXmlDepth) {
+    return Status::InvalidInput(path + ": XML elements nested deeper than " +
+                                std::to_string(limits::kMaxXmlDepth) + " levels: refused");
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status ImportAssimp(const std::string& path, Asset* out) {
@@ -572,8 +635,14 @@ Status ImportAssimp(const std::string& path, Asset* out) {
                                "misreads normalised weights and quantised positions");
   try {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) return Status::IoError(path + ": cannot open");
+    if (!std::filesystem::is_regular_file(path, ec)) {
+      std::string bytes;  // the reader's message: missing, a directory, a device
+      const Status r = ReadFileBytes(path, "a model file", &bytes);
+      return r.ok() ? Status::IoError(path + ": cannot open") : r;
+    }
     Assimp::Importer importer;
+    Status guard = CheckBeforeAssimp(path, ext, importer);
+    if (!guard.ok()) return guard;
     const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                            aiProcess_FlipUVs | aiProcess_ValidateDataStructure;
     const aiScene* scene = importer.ReadFile(path, flags);
@@ -581,6 +650,22 @@ Status ImportAssimp(const std::string& path, Asset* out) {
       return Status::InvalidInput(path + ": Assimp: " + importer.GetErrorString());
     if (scene->mRootNode == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0)
       return Status::InvalidInput(path + ": Assimp: incomplete scene");
+    // Node count and depth, walked without recursion, before the converter recurses.
+    std::vector<std::pair<const aiNode*, int>> stack{{scene->mRootNode, 1}};
+    std::uint64_t nodes = 0;
+    while (!stack.empty()) {
+      const auto [node, depth] = stack.back();
+      stack.pop_back();
+      if (++nodes > limits::kMaxNodes || depth > limits::kMaxNodeDepth) {
+        return Status::InvalidInput(path + ": the scene has more than " +
+                                    std::to_string(limits::kMaxNodes) +
+                                    " nodes or a node nested deeper than " +
+                                    std::to_string(limits::kMaxNodeDepth) + " levels: refused");
+      }
+      for (unsigned c = 0; c < node->mNumChildren; ++c) {
+        if (node->mChildren[c] != nullptr) stack.emplace_back(node->mChildren[c], depth + 1);
+      }
+    }
     Converter converter(*scene, path, out);
     Status s = converter.Run();
     if (!s.ok()) {

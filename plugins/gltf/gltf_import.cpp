@@ -19,6 +19,8 @@
 #include <vector>
 
 #include "dermis/asset/asset_validate.h"
+#include "dermis/core/file_io.h"
+#include "dermis/core/limits.h"
 #include "dermis/plugins/gltf.h"
 #include "gltf_decompress.h"
 #include "gltf_glb.h"
@@ -261,6 +263,8 @@ class GltfImporter {
   }
 
   Status Load();
+  Status CheckJsonDepth(std::string_view json) const;
+  Status Charge(const std::string& pointer, std::uint64_t values) const;
   Status CheckGlbHeader(const std::string& bytes, std::string* json_text) const;
   Status CheckDocument();
   Status CheckExternalUri(const std::string& pointer, const std::string& uri,
@@ -310,7 +314,21 @@ class GltfImporter {
   Json doc_;
   tinygltf::Model model_;
   ImageLoadLog image_log_;
+  std::uint64_t budget_bytes_ = limits::kImportBudgetBaseBytes;
+  mutable std::uint64_t decoded_bytes_ = 0;  // every decode counts, repeated ones too
 };
+
+Status GltfImporter::Charge(const std::string& pointer, std::uint64_t values) const {
+  const std::uint64_t bytes = values > (std::uint64_t{1} << 60) ? ~std::uint64_t{0} : values * 8;
+  if (bytes > budget_bytes_ || decoded_bytes_ > budget_bytes_ - bytes) {
+    return Fail(pointer, "decoding " + Str(values) +
+                             " more values would pass the import budget of " + Str(budget_bytes_) +
+                             " decoded bytes for this file (" + Str(decoded_bytes_) +
+                             " decoded so far): refused");
+  }
+  decoded_bytes_ += bytes;
+  return Status::Ok();
+}
 
 Status GltfImporter::CheckGlbHeader(const std::string& bytes, std::string* json_text) const {
   const std::uint64_t size = bytes.size();
@@ -431,12 +449,8 @@ Status GltfImporter::CheckDocument() {
 }
 
 Status GltfImporter::Load() {
-  std::ifstream in(path_, std::ios::binary);
-  if (!in) return Status::IoError(path_ + ": cannot open file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return Status::IoError(path_ + ": read error");
-  std::string bytes = ss.str();
+  std::string bytes;
+  if (Status r = ReadFileBytes(path_, "a glTF file", &bytes); !r.ok()) return r;
   if (bytes.size() > std::numeric_limits<std::uint32_t>::max()) {
     return FailFile("file larger than 4 GiB", StatusCode::kUnsupported);
   }
@@ -454,6 +468,9 @@ Status GltfImporter::Load() {
   } else {
     json_text = bytes;
   }
+  // Depth before any JSON library sees the document: tinygltf converts values recursively and
+  // a few kilobytes of brackets would overflow the stack.
+  if (Status d = CheckJsonDepth(json_text); !d.ok()) return d;
   try {
     doc_ = Json::parse(json_text);
   } catch (const Json::exception& e) {
@@ -477,6 +494,11 @@ Status GltfImporter::Load() {
   }
   Status s = CheckDocument();
   if (!s.ok()) return s;
+  if (auto nodes = doc_.find("nodes");
+      nodes != doc_.end() && nodes->is_array() && nodes->size() > limits::kMaxNodes) {
+    return Fail("/nodes", Str(std::uint64_t{nodes->size()}) + " nodes, more than the limit of " +
+                              Str(limits::kMaxNodes));
+  }
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&KeepEncodedImage, &image_log_);
@@ -493,6 +515,37 @@ Status GltfImporter::Load() {
     while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
     std::replace(why.begin(), why.end(), '\n', ';');
     return FailFile("tinygltf could not load the file: " + (why.empty() ? "no reason" : why));
+  }
+  // The decoded-bytes budget: proportional to the bytes the file brings (its own and its
+  // buffers'), so a tiny file cannot ask for gigabytes of accessor values.
+  std::uint64_t source_bytes = bytes.size();
+  for (const tinygltf::Buffer& b : model_.buffers) source_bytes += b.data.size();
+  budget_bytes_ =
+      limits::kImportBudgetBaseBytes + limits::kImportBudgetBytesPerFileByte * source_bytes;
+  return Status::Ok();
+}
+
+Status GltfImporter::CheckJsonDepth(std::string_view json) const {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limits::kMaxJsonDepth) {
+        return FailFile("JSON nested deeper than " + Str(limits::kMaxJsonDepth) +
+                        " levels (at byte " + Str(std::uint64_t{i}) + "): refused");
+      }
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
   }
   return Status::Ok();
 }
@@ -675,6 +728,7 @@ Status GltfImporter::DecodeRaw(int index, const std::string& from, Decoded* out)
     return Fail(ap + "/count",
                 "count " + Str(count) + " is too large for an accessor without bufferView");
   }
+  if (Status b = Charge(ap, total); !b.ok()) return b;
   out->count = static_cast<std::size_t>(count);
   out->components = components;
   out->type = acc.type;
@@ -1120,12 +1174,28 @@ Status GltfImporter::ImportSkins(Asset* asset) const {
   return Status::Ok();
 }
 
+// Linear in the file: the largest joint index of each mesh is found once, then compared with
+// the joint count of every skinned node that uses the mesh (not one scan per node).
 Status GltfImporter::CheckJointIndices(const Asset& asset) const {
+  std::vector<std::size_t> max_joint(asset.meshes.size(), 0);
+  std::vector<bool> has_joints(asset.meshes.size(), false);
+  for (std::size_t m = 0; m < asset.meshes.size(); ++m) {
+    for (const AssetPrimitive& prim : asset.meshes[m].primitives) {
+      for (const auto& set : prim.joints) {
+        for (const auto& j4 : set) {
+          has_joints[m] = true;
+          for (int c = 0; c < 4; ++c) max_joint[m] = std::max<std::size_t>(max_joint[m], j4[c]);
+        }
+      }
+    }
+  }
   for (std::size_t i = 0; i < asset.nodes.size(); ++i) {
     const AssetNode& node = asset.nodes[i];
     if (node.mesh < 0 || node.skin < 0) continue;
+    const std::size_t m = static_cast<std::size_t>(node.mesh);
     const std::size_t joint_count = asset.skins[static_cast<std::size_t>(node.skin)].joints.size();
-    const AssetMesh& mesh = asset.meshes[static_cast<std::size_t>(node.mesh)];
+    if (!has_joints[m] || max_joint[m] < joint_count) continue;
+    const AssetMesh& mesh = asset.meshes[m];
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
       const AssetPrimitive& prim = mesh.primitives[p];
       for (std::size_t set = 0; set < prim.joints.size(); ++set) {
@@ -1133,12 +1203,12 @@ Status GltfImporter::CheckJointIndices(const Asset& asset) const {
           for (int c = 0; c < 4; ++c) {
             const std::size_t j = prim.joints[set][v][c];
             if (j >= joint_count) {
-              return Fail(
-                  Ptr("meshes", static_cast<std::size_t>(node.mesh)) + Ptr("primitives", p) +
-                      "/attributes/JOINTS_" + Str(std::uint64_t{set}),
-                  "vertex " + Str(std::uint64_t{v}) + " has joint index " + Str(std::uint64_t{j}) +
-                      " >= joint count " + Str(std::uint64_t{joint_count}) + " of skin " +
-                      Str(node.skin) + " (used by node " + Str(std::uint64_t{i}) + ")");
+              return Fail(Ptr("meshes", m) + Ptr("primitives", p) + "/attributes/JOINTS_" +
+                              Str(std::uint64_t{set}),
+                          "vertex " + Str(std::uint64_t{v}) + " has joint index " +
+                              Str(std::uint64_t{j}) + " >= joint count " +
+                              Str(std::uint64_t{joint_count}) + " of skin " + Str(node.skin) +
+                              " (used by node " + Str(std::uint64_t{i}) + ")");
             }
           }
         }

@@ -118,3 +118,18 @@ TEST_CASE("file io: whole-file read and its errors") {
   CHECK(s.code() == StatusCode::kIoError);
   CHECK(s.message() == dir.path().string() + ": is a directory, not a test file");
 }
+
+TEST_CASE("file io: a device or a pipe is refused, not read until memory runs out") {
+  // Issue 19, finding 13: /dev/zero as an input was read without end.
+  std::string read = "unchanged";
+  Status s = ReadFileBytes("/dev/zero", "an OBJ file", &read);
+  CHECK(s.code() == StatusCode::kIoError);
+  CHECK(s.message() ==
+        "/dev/zero: is not a regular file (a device, pipe or socket), not an OBJ file");
+  CHECK(read == "unchanged");
+  test::TempDir dir;
+  const std::string fifo = dir.File("pipe.obj");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  s = ReadFileBytes(fifo, "an OBJ file", &read);  // opening it would block: never opened
+  CHECK(s.message().find("is not a regular file") != std::string::npos);
+}

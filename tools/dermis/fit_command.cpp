@@ -267,7 +267,10 @@ int RunFitCharacter(const FitArgs& a) {
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
-    s = WriteFileAtomically(a.report, CharacterReportJson(a, options, ch, report).dump(2) + "\n");
+    s = WriteFileAtomically(a.report,
+                            CharacterReportJson(a, options, ch, report)
+                                    .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
+                                "\n");
     if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet) {
@@ -341,7 +344,10 @@ int RunFit(const FitArgs& a) {
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
-    s = WriteFileAtomically(a.report, ReportJson(a, options, report).dump(2) + "\n");
+    s = WriteFileAtomically(
+        a.report,
+        ReportJson(a, options, report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
+            "\n");
     if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet && !report.control_mesh.fallback.empty()) {

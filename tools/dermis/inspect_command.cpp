@@ -484,6 +484,9 @@ void PrintText(const Json& report) {
 
 int RunInspect(const InspectArgs& a) {
   std::error_code ec;
+  if (std::filesystem::is_directory(a.input, ec)) {
+    return Fail(kCommand, Status::IoError(a.input + ": is a directory, not a file to inspect"));
+  }
   const std::uintmax_t size = std::filesystem::file_size(a.input, ec);
   if (ec || !std::filesystem::is_regular_file(a.input, ec)) {
     return Fail(kCommand, Status::IoError(a.input + ": cannot open"));

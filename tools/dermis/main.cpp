@@ -1,7 +1,9 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The dermis command-line tool.
 #include <cstdio>
+#include <exception>
 #include <functional>
+#include <new>
 #include <string>
 
 #include "commands.h"
@@ -35,5 +37,21 @@ int main(int argc, char** argv) {
                  e.what(), sub.c_str());
     return dermis::cli::kExitUsage;
   }
-  return run ? run() : dermis::cli::kExitUsage;
+  if (!run) return dermis::cli::kExitUsage;
+  // No exception leaves a command as an abort: out of memory, a library's exception or a bug all
+  // end in exit 1 with a message (outputs are written atomically, so nothing half-written stays).
+  std::string sub;
+  for (const CLI::App* s : app.get_subcommands()) sub = " " + s->get_name();
+  try {
+    return run();
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "dermis%s: error: out of memory (the input asks for more than this machine has)\n",
+                 sub.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dermis%s: error: %s\n", sub.c_str(), e.what());
+  } catch (...) {
+    std::fprintf(stderr, "dermis%s: error: unexpected failure\n", sub.c_str());
+  }
+  return dermis::cli::kExitFailure;
 }

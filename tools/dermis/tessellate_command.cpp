@@ -10,11 +10,13 @@
 
 #include "character_args.h"
 #include "commands.h"
+#include "dermis/core/file_io.h"
 #include "dermis/core/path.h"
 #include "dermis/dsurf/dsurf.h"
 #include "dermis/offline/build/domain_builder.h"
 #include "dermis/offline/geometry/builtin_meshes.h"
 #include "dermis/offline/io/obj_io.h"
+#include "dermis/offline/io/ply_io.h"
 #include "dermis/surface/tessellation.h"
 
 namespace dermis::cli {
@@ -91,7 +93,23 @@ int RunTessellate(const TessellateArgs& a) {
   }
   if (IsDsurf(a.input)) return RunTessellateDsurf(a, t0);
   PolygonMesh mesh;
-  Status s = a.builtin.empty() ? ReadObj(a.input, &mesh) : MakeBuiltinMesh(a.builtin, &mesh);
+  Status s;
+  if (!a.builtin.empty()) {
+    s = MakeBuiltinMesh(a.builtin, &mesh);
+  } else if (const std::string ext = LowerExtension(a.input); ext == ".obj") {
+    s = ReadObj(a.input, &mesh);
+  } else if (ext == ".ply") {
+    s = ReadPly(a.input, &mesh);
+    if (s.ok() && mesh.num_faces() == 0) {
+      s = Status::InvalidInput(a.input + ": no faces (a control mesh needs polygons)");
+    }
+  } else if (std::string probe; !(s = ReadFileBytes(a.input, "a control mesh", &probe)).ok()) {
+    // missing, a directory, a device: the reader's message says which
+  } else {
+    s = Status::Unsupported(a.input + ": tessellate reads a control mesh (.obj, .ply) or a " +
+                            ".dsurf, not '" + ext +
+                            "' files (fit a glTF or other asset first: dermis fit)");
+  }
   if (!s.ok()) return Fail(kCommand, s);
   const Index dropped = CompactUnusedVertices(&mesh);
   if (dropped > 0 && !a.quiet) {

@@ -14,8 +14,10 @@
 #include "dermis/asset/asset_validate.h"
 #include "dermis/core/file_io.h"
 #include "dermis/dsurf/dsurf.h"
+#include "dermis/offline/io/point_input.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/runtime/character.h"
+#include "dermis/runtime/runtime.h"
 #include "importers.h"
 
 namespace dermis::cli {
@@ -123,9 +125,21 @@ int RunValidate(const ValidateArgs& a) {
   if (s.ok()) {
     if (const std::uint32_t version = DsurfFileVersion(bytes); version != 0) {
       kind = IsSurfaceDsurfVersion(version) ? "dsurf surface" : "dsurf character";
+      // The same reader and checks as every consumer: the parse (which builds each domain and
+      // checks every offset and index), the asset, and the runtime character the C API loads.
       Character ch;
       s = ParseCharacter(bytes, a.input, &ch);
       if (s.ok() && !IsSurfaceDsurfVersion(version)) s = ValidateAsset(ch.asset);
+      if (s.ok()) {
+        std::unique_ptr<RuntimeCharacter> runtime;
+        s = RuntimeCharacter::FromBytes(bytes, a.input, &runtime);
+      }
+    } else if (Importers().Find(a.input, ImportKind::kScan) != nullptr) {
+      // OBJ, PLY: our readers, as fit and tessellate use them (never Assimp's).
+      kind = "mesh";
+      PolygonMesh mesh;
+      Index dropped = 0;
+      s = ReadFitInput(a.input, &mesh, &dropped, &Importers());
     } else {
       const Importer* importer = Importers().Find(a.input, ImportKind::kAsset);
       kind = importer != nullptr && importer->name() == "gltf" ? "gltf" : "other";
@@ -158,7 +172,7 @@ int RunValidate(const ValidateArgs& a) {
   }
   if (a.require_khronos && kind == "gltf" && !khronos.ran) valid = false;
   if (a.json) {
-    std::printf("%s\n", j.dump(2).c_str());
+    std::printf("%s\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
   } else if (!a.quiet || !valid) {
     if (!s.ok()) std::fprintf(stderr, "dermis validate: error: %s\n", s.message().c_str());
     if (kind == "gltf") {
@@ -192,8 +206,10 @@ void AddValidateCommand(CLI::App* app, std::function<int()>* run) {
   CLI::App* cmd = app->add_subcommand(
       "validate",
       "Check a file: glTF (.gltf/.glb) through the importer's structural checks and the Khronos "
-      "glTF-Validator when installed; .dsurf (checksum, counts, indices); other formats through "
-      "Assimp. Exit 0 valid, 1 invalid.");
+      "glTF-Validator when installed; .dsurf (checksum, counts, indices, the runtime load); OBJ "
+      "and "
+      "PLY through the readers fit and tessellate use; other formats through Assimp. Exit 0 valid, "
+      "1 invalid.");
   cmd->add_option("INPUT", args->input, "File to check")->required();
   cmd->add_flag("--json", args->json,
                 "Print a JSON report (schema dermis.validate/1; the Khronos messages included)");

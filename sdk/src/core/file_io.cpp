@@ -16,6 +16,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "dermis/core/limits.h"
+
 namespace dermis {
 namespace {
 
@@ -59,6 +61,20 @@ Status ReadFileBytes(const std::string& path, const std::string& kind, std::stri
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     return Status::IoError(path + ": is a directory, not " + kind);
+  }
+  // Only regular files: a device (/dev/zero), FIFO or socket would be read until memory ends.
+  const auto st = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
+    return Status::IoError(path + ": is not a regular file (a device, pipe or socket), not " +
+                           kind);
+  }
+  if (!ec && std::filesystem::is_regular_file(st)) {
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec && size > limits::kMaxInputFileBytes) {
+      return Status::Unsupported(path + ": " + std::to_string(size) + " bytes, larger than the " +
+                                 std::to_string(limits::kMaxInputFileBytes) +
+                                 "-byte limit on one input file");
+    }
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status::IoError(path + ": cannot open for reading: " + std::strerror(errno));

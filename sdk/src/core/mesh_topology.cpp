@@ -87,6 +87,9 @@ Status MeshTopology::CheckFaces(const ElementNamer* namer) {
   const Index nf = num_faces();
   all_quads_ = nf > 0;
   halfedge_face_.assign(num_halfedges(), kInvalidIndex);
+  // last_face[v]: the last face seen using v, so the repeated-vertex check is linear in the face
+  // size (a 250,000-gon must not take n^2 steps).
+  std::vector<Index> last_face(static_cast<size_t>(num_vertices_), kInvalidIndex);
   for (Index f = 0; f < nf; ++f) {
     const Index begin = face_offsets_[f], end = face_offsets_[f + 1];
     const Index n = end - begin;
@@ -102,12 +105,11 @@ Status MeshTopology::CheckFaces(const ElementNamer* namer) {
                                     ", out of range (mesh has " + std::to_string(num_vertices_) +
                                     " vertices)");
       }
-      for (Index g = begin; g < h; ++g) {
-        if (face_vertices_[g] == v) {
-          return Status::InvalidInput(FaceName(namer, f) + " uses " + VertexName(namer, v) +
-                                      " more than once");
-        }
+      if (last_face[v] == f) {
+        return Status::InvalidInput(FaceName(namer, f) + " uses " + VertexName(namer, v) +
+                                    " more than once");
       }
+      last_face[v] = f;
       halfedge_face_[h] = f;
     }
   }

@@ -4,6 +4,7 @@
 #include "dermis/surface/manifold_domain.h"
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 namespace dermis {
@@ -38,6 +39,18 @@ std::unique_ptr<ManifoldDomain> ManifoldDomain::Create(DomainData data, Status* 
       static_cast<size_t>(data.operator_offsets.back()) != data.operator_values.size()) {
     return fail("operator offsets do not describe the operator values");
   }
+  // Every offset is dereferenced by patch_operator(): each must lie inside the value array and the
+  // sequence must not decrease (checked in 64 bits, so no difference can overflow).
+  for (size_t i = 0; i + 1 < data.operator_offsets.size(); ++i) {
+    const std::int64_t begin = data.operator_offsets[i];
+    const std::int64_t end = data.operator_offsets[i + 1];
+    if (begin < 0 || end < begin || static_cast<std::uint64_t>(end) > data.operator_values.size()) {
+      return fail("operator offset " + std::to_string(i + 1) + " is " + std::to_string(end) +
+                  ": outside the operator values (0.." +
+                  std::to_string(data.operator_values.size()) + ") or below offset " +
+                  std::to_string(i) + " (" + std::to_string(begin) + ")");
+    }
+  }
   for (double x : data.operator_values) {
     if (!std::isfinite(x)) return fail("a patch-fit operator has a non-finite entry");
   }
@@ -63,7 +76,8 @@ std::unique_ptr<ManifoldDomain> ManifoldDomain::Create(DomainData data, Status* 
     d->ring_offsets_[v + 1] = d->ring_offsets_[v] + ring;
     const Index op = data.vertex_operator[v];
     if (op < 0 || op >= num_ops) return fail("vertex " + std::to_string(v) + " has no operator");
-    if (data.operator_offsets[op + 1] - data.operator_offsets[op] != 8 * ring) {
+    if (static_cast<std::int64_t>(data.operator_offsets[op + 1]) - data.operator_offsets[op] !=
+        static_cast<std::int64_t>(8) * ring) {
       return fail("the operator of vertex " + std::to_string(v) + " does not fit its ring size");
     }
   }

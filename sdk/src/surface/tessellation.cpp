@@ -2,14 +2,40 @@
 // Uniform n x n tessellation with shared edge and vertex samples (watertight by construction).
 #include "dermis/surface/tessellation.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <string>
 
+#include "dermis/core/limits.h"
 #include "dermis/surface/surface_evaluator.h"
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <sys/resource.h>
+#include <unistd.h>
+#endif
 
 namespace dermis {
 
 namespace {
+
+// The most bytes one tessellation may take: limits::kMaxTessellationBytes, half the physical
+// memory and half the address-space limit of the process (ulimit -v), whichever is least.
+std::uint64_t TessellationMemoryBudget() {
+  std::uint64_t budget = limits::kMaxTessellationBytes;
+#if defined(__unix__) || defined(__APPLE__)
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  if (pages > 0 && page > 0) {
+    budget =
+        std::min(budget, static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2);
+  }
+  struct rlimit rl;
+  if (::getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY) {
+    budget = std::min(budget, static_cast<std::uint64_t>(rl.rlim_cur) / 2);
+  }
+#endif
+  return budget;
+}
 
 // Where the samples of a level-n pattern lie: vertices first, then n - 1 per edge, then
 // (n - 1)^2 per face.
@@ -130,6 +156,20 @@ Status TessellationPattern::Build(const MeshTopology& topo, int level, Tessellat
       num_tris * 3 > static_cast<long long>(std::numeric_limits<std::int32_t>::max())) {
     return Status::InvalidInput("tessellation at level " + std::to_string(level) + " would have " +
                                 std::to_string(num_samples) + " samples: too many");
+  }
+  // Memory before allocation: the pattern (a location per sample, three indices per triangle)
+  // and what a caller evaluates into it (position and normal in double, Vec3 each, and the float
+  // copies written out), against the fixed limit and half of what this process may have.
+  const std::uint64_t bytes =
+      static_cast<std::uint64_t>(num_samples) * (sizeof(SampleLocation) + 2 * sizeof(Vec3) + 24) +
+      static_cast<std::uint64_t>(num_tris) * 3 * sizeof(std::uint32_t) * 2;
+  const std::uint64_t budget = TessellationMemoryBudget();
+  if (bytes > budget) {
+    return Status::InvalidInput(
+        "tessellation at level " + std::to_string(level) + " of " + std::to_string(nf) +
+        " faces needs about " + std::to_string(bytes >> 20) + " MiB, more than the " +
+        std::to_string(budget >> 20) + " MiB allowed (half the memory available, at most " +
+        std::to_string(limits::kMaxTessellationBytes >> 20) + " MiB): lower --level");
   }
   TessellationPattern p;
   p.level = level;

@@ -198,6 +198,33 @@ TEST_CASE("character: the same bytes whatever the thread count") {
   CHECK(bytes[0] == bytes[1]);
 }
 
+TEST_CASE("character: a mesh whose triangles all collapse is listed as unfitted") {
+  // Issue 19, finding 12: it vanished from the report ("0 components", nothing unfitted).
+  Asset asset = TwoCylinders();
+  AssetMesh flat;
+  AssetPrimitive p;
+  p.positions.assign(30, glm::vec3(0.5f));
+  for (std::uint32_t i = 0; i < 30; ++i) p.indices.push_back(i);
+  flat.primitives.push_back(p);
+  asset.meshes.push_back(flat);
+  AssetNode node;
+  node.mesh = static_cast<Index>(asset.meshes.size() - 1);
+  asset.nodes.push_back(node);
+  asset.scenes[0].nodes.push_back(static_cast<Index>(asset.nodes.size() - 1));
+  REQUIRE(ValidateAsset(asset).ok());
+  Character ch;
+  CharacterFitReport report;
+  REQUIRE(FitCharacter(asset, CharacterFitOptions{}, &ch, &report).ok());
+  CHECK(report.parts_fitted == 2);
+  REQUIRE(ch.unfitted.size() == 2);
+  const UnfittedPart& u = ch.unfitted[1];
+  CHECK(u.mesh == static_cast<Index>(asset.meshes.size() - 1));
+  CHECK(u.triangles == 10);
+  CHECK(u.vertices == 1);
+  CHECK(u.reason.find("degenerate") != std::string::npos);
+  CHECK(report.parts_unfitted == 2);
+}
+
 }  // namespace dermis
 
 namespace dermis {

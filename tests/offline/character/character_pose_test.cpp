@@ -483,4 +483,30 @@ TEST_CASE("character pose: a deformer the table does not know is refused") {
   CHECK_THAT(s.message(), Catch::EndsWith(": unknown deformer 9"));
 }
 
+TEST_CASE("character pose: a bake past the vertex-frame budget is refused before posing") {
+  // Issue 19, finding 5: a clip of 1e6 s at 30 frames per second asked for 1e7 frames.
+  Asset asset = BendingCylinders();
+  REQUIRE(asset.animations.size() == 1);
+  for (AssetAnimationSampler& s : asset.animations[0].samplers) s.times.back() = 1.0e6f;
+  REQUIRE(asset.animations[0].Duration() == Approx(1.0e6));
+  Character ch;
+  REQUIRE(FitCharacter(asset, CharacterFitOptions{}, &ch, nullptr).ok());
+  CharacterPoseOptions options;
+  options.deformer = DeformerKind::kSweep;
+  CharacterPoser poser;
+  REQUIRE(BuildPoser(ch, options, &poser));
+  Asset baked;
+  const Status s = BuildBakedAsset(&poser, 30.0, &baked, nullptr);
+  INFO(s.message());
+  REQUIRE_FALSE(s.ok());
+  CHECK(s.message().find("10000001 frames") !=
+        std::string::npos);  // ClipStepTimes caps a clip at 1e7 steps
+  CHECK(s.message().find("vertex-frames") != std::string::npos);
+  CHECK(baked.meshes.empty());
+  // The same clip at a frame rate inside the budget bakes (1e6 s at 1e-4 fps: 101 frames).
+  REQUIRE(BuildBakedAsset(&poser, 1e-4, &baked, nullptr).ok());
+  REQUIRE_FALSE(baked.meshes.empty());
+  CHECK(baked.meshes[0].primitives[0].targets.size() == 101);
+}
+
 }  // namespace dermis

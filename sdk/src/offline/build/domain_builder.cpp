@@ -91,6 +91,7 @@ Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>
 Status BuildControlSurface(const PolygonMesh& mesh, const DomainOptions& options,
                            ControlSurface* out) {
   Status s = ValidatePolygonMesh(mesh);
+  if (s.ok()) s = CheckCoordinateRange(mesh);
   if (!s.ok()) return s;
   ControlSurface cs;
   s = Quadrangulate(mesh, &cs.control);

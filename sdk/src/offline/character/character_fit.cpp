@@ -431,7 +431,24 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
     }
     const Index skin = MeshSkin(asset, m);
     const WeldedMesh w = WeldMesh(mesh);
-    if (w.triangles.empty()) continue;
+    if (w.triangles.empty()) {
+      // Nothing to fit, but never silently: a mesh with triangles that all collapse (repeated
+      // or coincident vertices) is listed as unfitted with the reason.
+      std::int64_t triangles = 0;
+      for (const AssetPrimitive& prim : mesh.primitives) {
+        triangles += static_cast<std::int64_t>(PrimitiveTriangles(prim).size() / 3);
+      }
+      if (triangles == 0) continue;  // points or lines only: not a surface
+      UnfittedPart unfitted;
+      unfitted.mesh = static_cast<Index>(m);
+      unfitted.component = 0;
+      unfitted.vertices = static_cast<std::int64_t>(w.positions.size());
+      unfitted.triangles = triangles;
+      unfitted.reason = "degenerate: every triangle has two vertices at the same position";
+      ch.unfitted.push_back(unfitted);
+      ++rep.parts_unfitted;
+      continue;
+    }
     const Components components = SplitComponents(w);
     rep.components += static_cast<std::int64_t>(components.triangles.size());
     for (std::size_t c = 0; c < components.triangles.size(); ++c) {

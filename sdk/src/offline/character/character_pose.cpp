@@ -13,6 +13,7 @@
 #include <map>
 #include <utility>
 
+#include "dermis/core/limits.h"
 #include "dermis/core/parallel.h"
 #include "dermis/offline/character/character_export.h"
 #include "dermis/offline/character/skin_transfer.h"
@@ -474,6 +475,27 @@ Status BuildBakedAsset(CharacterPoser* poser, double fps, Asset* out, CharacterB
   for (std::size_t d = 0, mesh = 0, prim = 0; d < drawn.size(); ++d) {
     if (d > 0 && drawn[d - 1].node != drawn[d].node) ++mesh, prim = 0;
     target_of[d] = {mesh, prim++};
+  }
+  // The budget before any frame is listed or posed: frames (counted from the clip lengths) times
+  // the vertices of the rest pose, against limits::kMaxBakedVertexFrames.
+  {
+    std::uint64_t vertices = 0;
+    double frames = 0.0;
+    for (const PosedPrimitive& p : rest) vertices += p.positions.size();
+    for (const AssetAnimation& clip : src.animations) {
+      const double d = clip.Duration();
+      // As many as ClipStepTimes lists (it caps a clip at 1e7 steps).
+      frames +=
+          (std::isfinite(d) && d > 0.0 ? std::ceil(d * std::min(fps, 1e7 / d) - 1e-3) : 0.0) + 1.0;
+    }
+    const double vertex_frames = frames * static_cast<double>(std::max<std::uint64_t>(vertices, 1));
+    if (!(vertex_frames <= static_cast<double>(limits::kMaxBakedVertexFrames))) {
+      return Status::InvalidInput(
+          src.source + ": baking " + std::to_string(static_cast<unsigned long long>(frames)) +
+          " frames of " + std::to_string(vertices) + " vertices passes the limit of " +
+          std::to_string(limits::kMaxBakedVertexFrames) +
+          " vertex-frames (a clip too long for the frame rate: lower --fps or shorten the clips)");
+    }
   }
   CharacterBakeReport rep;
   std::vector<std::vector<double>> frame_times(src.animations.size());

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "dermis/core/limits.h"
 #include "dermis/core/mesh_topology.h"
 
 namespace dermis {
@@ -33,6 +34,21 @@ Status ValidatePolygonMesh(const PolygonMesh& mesh) {
       return Status::InvalidInput(where + ": " + mesh.VertexName(v) + " is an interior vertex of " +
                                   std::to_string(k) +
                                   " faces (at least 3 needed: two faces glued along two edges)");
+    }
+  }
+  return Status::Ok();
+}
+
+Status CheckCoordinateRange(const PolygonMesh& mesh) {
+  const std::string where = mesh.source_name.empty() ? "mesh" : mesh.source_name;
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    const Vec3& p = mesh.positions[v];
+    if (!(std::abs(p.x) <= limits::kMaxCoordinate && std::abs(p.y) <= limits::kMaxCoordinate &&
+          std::abs(p.z) <= limits::kMaxCoordinate)) {
+      return Status::InvalidInput(where + ": " + mesh.VertexName(v) +
+                                  " has a coordinate that is not finite or of magnitude above "
+                                  "1e12 (products of such coordinates overflow; rescale the "
+                                  "model)");
     }
   }
   return Status::Ok();

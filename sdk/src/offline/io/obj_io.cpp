@@ -2,6 +2,7 @@
 // Wavefront OBJ polygon reader with line-accurate errors, and an atomic OBJ writer.
 #include "dermis/offline/io/obj_io.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -120,7 +121,7 @@ Status ParseFace(const std::vector<std::string_view>& tokens, const std::string&
     const long long count = static_cast<long long>(m->positions.size());
     if (value == 0) return LineError(name, line, "vertex index 0 (OBJ indices start at 1)");
     if (value < 0) {
-      if (-value > count) {
+      if (value < -count) {  // not -value > count: -LLONG_MIN overflows
         return LineError(
             name, line,
             "relative vertex index " + std::to_string(value) + " points before the first vertex");
@@ -130,14 +131,25 @@ Status ParseFace(const std::vector<std::string_view>& tokens, const std::string&
     if (value > std::numeric_limits<Index>::max()) {
       return LineError(name, line, "vertex index " + std::to_string(value) + " is too large");
     }
-    const Index v = static_cast<Index>(value - 1);
-    for (Index prev : *face) {
-      if (prev == v) {
-        return LineError(name, line,
-                         "the face uses vertex " + std::to_string(value) + " more than once");
+    face->push_back(static_cast<Index>(value - 1));
+  }
+  // Repeated vertices: pairwise for small faces, sorted for large ones (n log n, not n^2).
+  Index repeated = kInvalidIndex;
+  if (face->size() <= 16) {
+    for (size_t i = 0; i < face->size() && repeated == kInvalidIndex; ++i) {
+      for (size_t j = 0; j < i; ++j) {
+        if ((*face)[j] == (*face)[i]) repeated = (*face)[i];
       }
     }
-    face->push_back(v);
+  } else {
+    std::vector<Index> sorted(*face);
+    std::sort(sorted.begin(), sorted.end());
+    const auto it = std::adjacent_find(sorted.begin(), sorted.end());
+    if (it != sorted.end()) repeated = *it;
+  }
+  if (repeated != kInvalidIndex) {
+    return LineError(name, line,
+                     "the face uses vertex " + std::to_string(repeated + 1) + " more than once");
   }
   if (face->size() < 3) {
     return LineError(

@@ -18,6 +18,12 @@ namespace dermis {
 /// The message names the source, the element and its line where known.
 Status ValidatePolygonMesh(const PolygonMesh& mesh);
 
+/// Checks that every coordinate is finite and of magnitude at most limits::kMaxCoordinate
+/// (dermis/core/limits.h), so that the products geometry forms (cross products, squared
+/// distances, normals) cannot overflow. The readers keep any finite number exactly; the
+/// pipelines that compute with a mesh (BuildControlSurface, ReadFitInput) call this first.
+Status CheckCoordinateRange(const PolygonMesh& mesh);
+
 /// Removes vertices that no face uses and renumbers the faces. Returns how many were removed;
 /// `old_to_new` (optional) receives the new index of every old vertex or kInvalidIndex.
 Index CompactUnusedVertices(PolygonMesh* mesh, std::vector<Index>* old_to_new = nullptr);
