@@ -34,8 +34,9 @@ bool PoseAndEvaluate(dermis_instance* inst, const dermis_output* out, std::size_
   if (dermis_instance_pose(inst, 0, palette.data(), joints) != DERMIS_OK) return false;
   const std::size_t n = dermis_output_vertex_count(out);
   result->assign(6 * n, 0.0f);
-  return dermis_evaluate(inst, out, 0, SIZE_MAX, result->data(), 12, result->data() + 3 * n, 12) ==
-         DERMIS_OK;
+  const std::size_t bytes = 12 * n;  // each of the two arrays: 3 floats per vertex
+  return dermis_evaluate(inst, out, 0, SIZE_MAX, result->data(), 12, bytes,
+                         result->data() + 3 * n, 12, bytes) == DERMIS_OK;
 }
 
 }  // namespace
@@ -105,8 +106,8 @@ TEST_CASE("threads: shared character and output, instances posed and evaluated c
     threads.emplace_back([&, t]() {
       const std::size_t begin = blocks * static_cast<std::size_t>(t) / kThreads;
       const std::size_t end = blocks * static_cast<std::size_t>(t + 1) / kThreads;
-      split_ok[t] = dermis_evaluate(inst, out, begin, end, split.data(), 12, split.data() + 3 * n,
-                                    12) == DERMIS_OK;
+      split_ok[t] = dermis_evaluate(inst, out, begin, end, split.data(), 12, 12 * n,
+                                    split.data() + 3 * n, 12, 12 * n) == DERMIS_OK;
     });
   }
   for (std::thread& th : threads) th.join();
