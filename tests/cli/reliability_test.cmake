@@ -100,12 +100,30 @@ expect_run(1 "tessellate reads a control mesh \\(\\.obj, \\.ply\\) or a \\.dsurf
            ${DERMIS} tessellate ${IN}/gltf/bad_utf8_name.gltf -o ${OUT}/x.obj)
 # 3: a tessellation larger than memory allows: exit 1 with a message, not an abort, also under
 # an address-space limit (where std::bad_alloc used to abort the tool).
-expect_run(1 "tessellation at level 4096 of 6 faces needs about [0-9]+ MiB.*lower --level"
-           ${DERMIS} tessellate --builtin cube --level 4096 -o ${OUT}/x.obj)
+# The CLI takes --level 1..128 (one range in every command), so the large tessellation is a
+# 64 x 64 grid of quads at level 128: about 9 GiB, above the fixed limit of 8 GiB.
+set(grid "")
+foreach(j RANGE 64)
+  foreach(i RANGE 64)
+    string(APPEND grid "v ${i} ${j} 0\n")
+  endforeach()
+endforeach()
+foreach(j RANGE 63)
+  foreach(i RANGE 63)
+    math(EXPR a "${j} * 65 + ${i} + 1")
+    math(EXPR b "${a} + 1")
+    math(EXPR c "${a} + 66")
+    math(EXPR d "${a} + 65")
+    string(APPEND grid "f ${a} ${b} ${c} ${d}\n")
+  endforeach()
+endforeach()
+file(WRITE ${WORK}/grid64.obj "${grid}")
+expect_run(1 "tessellation at level 128 of 4096 faces needs about [0-9]+ MiB.*lower --level"
+           ${DERMIS} tessellate ${WORK}/grid64.obj --level 128 -o ${OUT}/x.obj)
 find_program(SH sh)
 if(SH AND NOT SANITIZE)
   expect_run(1 "lower --level" ${SH} -c
-             "ulimit -v 4000000 && exec '${DERMIS}' tessellate --builtin cube --level 2048 -o '${OUT}/x.obj'")
+             "ulimit -v 4000000 && exec '${DERMIS}' tessellate '${WORK}/grid64.obj' --level 64 -o '${OUT}/x.obj'")
 endif()
 # 3: a file name that is not UTF-8 (validate --json and fit --report print and write it).
 set(rigged ${DATA}/gltf/RiggedSimple.glb)
