@@ -21,12 +21,20 @@
 // status 77 when the shared data is absent.
 // Usage (from the repo root): bench_runtime [--data DIR] [--json FILE] [--quick]
 //                                           [--gpu-device N | --no-gpu]
+#include <opensubdiv/bfr/refinerSurfaceFactory.h>
+#include <opensubdiv/bfr/surface.h>
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 #include <opensubdiv/osd/bufferDescriptor.h>
 #include <opensubdiv/osd/cpuEvaluator.h>
+#include <opensubdiv/osd/cpuPatchTable.h>
+#include <opensubdiv/osd/types.h>
+#include <opensubdiv/version.h>
 
 #include <algorithm>
 #include <chrono>
@@ -58,6 +66,7 @@
 using namespace dermis;
 namespace Far = OpenSubdiv::Far;
 namespace Osd = OpenSubdiv::Osd;
+namespace Bfr = OpenSubdiv::Bfr;
 
 namespace {
 
@@ -83,6 +92,34 @@ double TimePerCall(const std::function<void()>& fn, int trials, double min_secon
   return t[t.size() / 2];
 }
 
+// Median seconds per call of each of `fns`, their trials interleaved (trial k of every
+// contender before trial k + 1 of any), so that a load that comes and goes on a shared machine
+// weighs on every contender alike; each trial repeats its fn for at least min_seconds.
+std::vector<double> TimeAlternating(const std::vector<std::function<void()>>& fns, int trials,
+                                    double min_seconds) {
+  std::vector<std::vector<double>> t(fns.size());
+  for (const auto& fn : fns) fn();  // warm up
+  for (int k = 0; k < trials; ++k) {
+    for (std::size_t c = 0; c < fns.size(); ++c) {
+      int reps = 0;
+      const auto start = Clock::now();
+      double elapsed = 0.0;
+      do {
+        fns[c]();
+        ++reps;
+        elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+      } while (elapsed < min_seconds);
+      t[c].push_back(elapsed / reps);
+    }
+  }
+  std::vector<double> median;
+  for (std::vector<double>& v : t) {
+    std::sort(v.begin(), v.end());
+    median.push_back(v[v.size() / 2]);
+  }
+  return median;
+}
+
 struct Row {
   int level = 0;
   std::size_t samples = 0;
@@ -91,11 +128,17 @@ struct Row {
   double generic = 0.0;          // the same with the portable kernel (1 thread only)
   double osd_eval = 0.0;         // Osd::CpuEvaluator::EvalStencils
   double osd_far = 0.0;          // Far::LimitStencilTable::UpdateValues + UpdateDerivs
+  double osd_patch = 0.0;        // refined points by EvalStencils + Osd::CpuEvaluator::EvalPatches
+  double osd_bfr = 0.0;          // Bfr::Surface PreparePatchPoints + Evaluate
+  double osd_points = 0.0;       // of osd_patch: the refined and local points alone
   double lbs = 0.0;              // float LBS, 4 influences, positions + normals
   double scalar = 0.0;           // EvaluateSamples (double, reference), 1 thread, 0 if not run
   double gpu = 0.0;              // the compute shader's device time, 0 if not run
   double osd_stencil_cvs = 0.0;  // mean control vertices per OSD stencil
-  std::size_t dermis_bytes = 0, osd_bytes = 0;
+  std::size_t dermis_bytes = 0, osd_bytes = 0, osd_patch_bytes = 0, osd_bfr_bytes = 0;
+  double best_osd() const {
+    return std::min(std::min(osd_eval, osd_far), std::min(osd_patch, osd_bfr));
+  }
 };
 
 struct FrameRow {
@@ -180,7 +223,9 @@ struct OsdVertex {
   }
 };
 
-std::unique_ptr<Far::TopologyRefiner> MakeRefiner(const MeshTopology& topo) {
+// `adaptive`: refined adaptively to isolation level 3 (limit stencils, patch table); otherwise
+// the base level only (Bfr).
+std::unique_ptr<Far::TopologyRefiner> MakeRefiner(const MeshTopology& topo, bool adaptive) {
   std::vector<int> verts_per_face(static_cast<std::size_t>(topo.num_faces()), 4);
   std::vector<int> indices;
   for (Index f = 0; f < topo.num_faces(); ++f) {
@@ -196,9 +241,142 @@ std::unique_ptr<Far::TopologyRefiner> MakeRefiner(const MeshTopology& topo) {
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   std::unique_ptr<Far::TopologyRefiner> r(
       Factory::Create(desc, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, sdc)));
-  if (r) r->RefineAdaptive(Far::TopologyRefiner::AdaptiveOptions(3));
+  if (r && adaptive) r->RefineAdaptive(Far::TopologyRefiner::AdaptiveOptions(3));
   return r;
 }
+
+// Bytes of a stencil table's arrays (sizes, offsets, indices, weights and, for limit stencils,
+// du and dv weights).
+std::size_t StencilBytes(const Far::StencilTable& t) {
+  return (t.GetSizes().size() + t.GetOffsets().size() + t.GetControlIndices().size() +
+          t.GetWeights().size()) *
+         4;
+}
+
+// OpenSubdiv's patch-table evaluation of the limit surface (the path of its own examples and
+// of Osd's GPU evaluators), set up once per control mesh: Far::PatchTableFactory on the
+// adaptively refined mesh (isolation 3, Gregory-basis end caps: OpenSubdiv's defaults), the
+// stencils of every refined and local (end-cap) point factorised to the control vertices, one
+// vertex buffer [control | refined | local points] and Osd::CpuPatchTable's flat arrays. Per
+// frame the control vertices move: Osd::CpuEvaluator::EvalStencils recomputes the refined and
+// local points, then Osd::CpuEvaluator::EvalPatches evaluates position + du + dv at the
+// samples' Osd::PatchCoord (found once by Far::PatchMap).
+struct OsdPatchEval {
+  std::unique_ptr<const Far::PatchTable> table;
+  std::unique_ptr<const Far::StencilTable> stencils;  // refined + local points
+  std::unique_ptr<Osd::CpuPatchTable> cpu;
+  std::unique_ptr<Far::PatchMap> map;
+  std::vector<float> vertices;  // 3 floats per control, refined and local point
+  int num_control = 0;
+
+  bool Build(const Far::TopologyRefiner& refiner, const std::vector<float>& cv) {
+    Far::PatchTableFactory::Options po(3);
+    po.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+    table.reset(Far::PatchTableFactory::Create(refiner, po));
+    if (!table) return false;
+    Far::StencilTableFactory::Options so;
+    so.generateOffsets = true;
+    so.generateIntermediateLevels = true;
+    std::unique_ptr<const Far::StencilTable> refined(Far::StencilTableFactory::Create(refiner, so));
+    if (!refined) return false;
+    if (const Far::StencilTable* local = table->GetLocalPointStencilTable()) {
+      stencils.reset(
+          Far::StencilTableFactory::AppendLocalPointStencilTable(refiner, refined.get(), local));
+    } else {
+      stencils = std::move(refined);
+    }
+    if (!stencils) return false;
+    cpu.reset(Osd::CpuPatchTable::Create(table.get()));
+    map = std::make_unique<Far::PatchMap>(*table);
+    num_control = refiner.GetLevel(0).GetNumVertices();
+    vertices.assign(3 * (static_cast<std::size_t>(num_control) +
+                         static_cast<std::size_t>(stencils->GetNumStencils())),
+                    0.0f);
+    std::copy(cv.begin(), cv.end(), vertices.begin());
+    return true;
+  }
+
+  // Per-frame state and tables (the patch map is a setup-time search structure, not counted).
+  std::size_t bytes() const {
+    return StencilBytes(*stencils) + vertices.size() * 4 +
+           cpu->GetNumPatchArrays() * sizeof(Osd::PatchArray) + cpu->GetPatchIndexSize() * 4 +
+           cpu->GetPatchParamSize() * sizeof(Osd::PatchParam);
+  }
+
+  // Refined and local points of stencils [b, e) from the control vertices.
+  void UpdatePoints(std::size_t b, std::size_t e) {
+    Osd::CpuEvaluator::EvalStencils(vertices.data(), Osd::BufferDescriptor(0, 3, 3),
+                                    vertices.data(), Osd::BufferDescriptor(3 * num_control, 3, 3),
+                                    &stencils->GetSizes()[0], &stencils->GetOffsets()[0],
+                                    &stencils->GetControlIndices()[0], &stencils->GetWeights()[0],
+                                    static_cast<int>(b), static_cast<int>(e));
+  }
+
+  // Samples [b, e) of `coords` into 3-float position, du and dv arrays (indexed like coords).
+  void Evaluate(const Osd::PatchCoord* coords, std::size_t b, std::size_t e, float* p, float* du,
+                float* dv) const {
+    const Osd::BufferDescriptor d(0, 3, 3);
+    Osd::CpuEvaluator::EvalPatches(vertices.data(), d, p + 3 * b, d, du + 3 * b, d, dv + 3 * b, d,
+                                   static_cast<int>(e - b), coords + b, cpu->GetPatchArrayBuffer(),
+                                   cpu->GetPatchIndexBuffer(), cpu->GetPatchParamBuffer());
+  }
+};
+
+// OpenSubdiv's Bfr (3.5): one Bfr::Surface per face, made once by Bfr::RefinerSurfaceFactory
+// (irregular faces approximated to level 3, as the patch table's isolation, instead of Bfr's
+// default 2, so that the three OpenSubdiv evaluators give the same surface; the factory caches
+// their patch trees); per frame each face's patch points are prepared from the control vertices and
+// its samples evaluated (position + du + dv).
+struct BfrEval {
+  std::unique_ptr<Far::TopologyRefiner> refiner;  // base level only
+  std::unique_ptr<Bfr::RefinerSurfaceFactory<>> factory;
+  std::vector<Bfr::Surface<float>> surfaces;
+  std::vector<std::size_t> point_offset;  // per face: first float in patch_points
+  std::vector<float> patch_points;
+
+  bool Build(std::unique_ptr<Far::TopologyRefiner> r) {
+    refiner = std::move(r);
+    Bfr::RefinerSurfaceFactory<>::Options fo;
+    fo.SetApproxLevelSmooth(3);  // as the patch table's isolation level
+    factory = std::make_unique<Bfr::RefinerSurfaceFactory<>>(*refiner, fo);
+    const int faces = refiner->GetLevel(0).GetNumFaces();
+    surfaces.resize(static_cast<std::size_t>(faces));
+    point_offset.resize(surfaces.size() + 1, 0);
+    for (int f = 0; f < faces; ++f) {
+      Bfr::Surface<float>& sf = surfaces[static_cast<std::size_t>(f)];
+      if (!factory->InitVertexSurface(f, &sf) || !sf.IsValid()) return false;
+      point_offset[static_cast<std::size_t>(f) + 1] =
+          point_offset[static_cast<std::size_t>(f)] +
+          3 * static_cast<std::size_t>(sf.GetNumPatchPoints());
+    }
+    patch_points.assign(point_offset.back(), 0.0f);
+    return true;
+  }
+
+  // The surfaces' control indices and patch points (the factory's cache of irregular patch
+  // trees, shared by the surfaces, is not counted).
+  std::size_t bytes() const {
+    std::size_t b = surfaces.size() * sizeof(Bfr::Surface<float>) + patch_points.size() * 4;
+    for (const Bfr::Surface<float>& sf : surfaces) {
+      b += static_cast<std::size_t>(sf.GetNumControlPoints()) * 4;
+    }
+    return b;
+  }
+
+  // Faces [fb, fe): samples of face f are uv[2k..] for k in [first[f], first[f + 1]), written
+  // at the same index k of p, du, dv.
+  void Evaluate(const float* cv, const std::vector<std::size_t>& first, const float* uv,
+                std::size_t fb, std::size_t fe, float* p, float* du, float* dv) {
+    const Bfr::Surface<float>::PointDescriptor d(3);
+    for (std::size_t f = fb; f < fe; ++f) {
+      float* pp = patch_points.data() + point_offset[f];
+      surfaces[f].PreparePatchPoints(cv, d, pp, d);
+      for (std::size_t k = first[f]; k < first[f + 1]; ++k) {
+        surfaces[f].Evaluate(uv + 2 * k, pp, d, p + 3 * k, du + 3 * k, dv + 3 * k);
+      }
+    }
+  }
+};
 
 #if defined(DERMIS_BENCH_GPU)
 // One plan on the device: uploaded once, its patches written, the dispatches timed by the
@@ -325,8 +503,9 @@ int main(int argc, char** argv) {
   const std::vector<Vec3>& control = fitted.surface.control.positions;
   std::vector<float> packed(control.size() * kPackedPatchStride);
   PackPatches(fitted.surface.patches.data(), control.size(), packed.data());
-  std::unique_ptr<Far::TopologyRefiner> refiner = MakeRefiner(domain.topology());
-  if (!refiner) {
+  std::unique_ptr<Far::TopologyRefiner> refiner = MakeRefiner(domain.topology(), true);
+  std::unique_ptr<Far::TopologyRefiner> base_refiner = MakeRefiner(domain.topology(), false);
+  if (!refiner || !base_refiner) {
     std::fprintf(stderr, "bench_runtime: OpenSubdiv refused the control mesh\n");
     return 1;
   }
@@ -334,8 +513,26 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i < control.size(); ++i) {
     for (int k = 0; k < 3; ++k) cv[3 * i + k] = static_cast<float>(control[i][k]);
   }
-  std::printf("# bunny: %d control vertices, %d faces, %d displacement levels\n",
-              domain.num_vertices(), domain.num_faces(), fitted.displacement->max_levels());
+  OsdPatchEval osd_patches;
+  BfrEval bfr;
+  if (!osd_patches.Build(*refiner, cv) || !bfr.Build(std::move(base_refiner))) {
+    std::fprintf(stderr, "bench_runtime: OpenSubdiv's patch table or Bfr surfaces failed\n");
+    return 1;
+  }
+  double diagonal = 0.0;  // of the control points' bounding box, for the agreement check
+  {
+    Vec3 lo = control[0], hi = control[0];
+    for (const Vec3& c : control) {
+      lo = glm::min(lo, c);
+      hi = glm::max(hi, c);
+    }
+    diagonal = glm::length(hi - lo);
+  }
+  std::printf(
+      "# bunny: %d control vertices, %d faces, %d displacement levels; OpenSubdiv patch table: "
+      "%d patches, %d refined and local points\n",
+      domain.num_vertices(), domain.num_faces(), fitted.displacement->max_levels(),
+      osd_patches.table->GetNumPatchesTotal(), osd_patches.stencils->GetNumStencils());
 
   std::vector<Row> rows;
   const std::vector<int> levels =
@@ -352,7 +549,6 @@ int main(int argc, char** argv) {
     if (!s.ok()) return 1;
     // OpenSubdiv at the same (face, u, v): one location array per face (ptex index = face).
     std::vector<std::vector<float>> us(static_cast<std::size_t>(domain.num_faces())), vs(us.size());
-    std::vector<std::size_t> order;  // OSD stencil k -> sample index
     for (std::size_t i = 0; i < n; ++i) {
       us[static_cast<std::size_t>(pattern.samples[i].face)].push_back(
           static_cast<float>(pattern.samples[i].u));
@@ -377,8 +573,58 @@ int main(int argc, char** argv) {
       return 1;
     }
     std::vector<float> out_p(3 * n), out_n(3 * n), osd_p(3 * n), osd_du(3 * n), osd_dv(3 * n);
-    LbsMesh lbs(n, 64);
     const Osd::BufferDescriptor desc(0, 3, 3);
+    // The patch-table and Bfr evaluators take the samples in the stencils' order (face by
+    // face): `first[f]` is face f's first, `uv` their (u, v), `coords` their patch coordinates.
+    std::vector<std::size_t> first(us.size() + 1, 0);
+    std::vector<float> uv;
+    std::vector<Osd::PatchCoord> coords;
+    uv.reserve(2 * n);
+    coords.reserve(n);
+    for (std::size_t f = 0; f < us.size(); ++f) {
+      first[f + 1] = first[f] + us[f].size();
+      for (std::size_t k = 0; k < us[f].size(); ++k) {
+        uv.push_back(us[f][k]);
+        uv.push_back(vs[f][k]);
+        const Far::PatchTable::PatchHandle* h =
+            osd_patches.map->FindPatch(static_cast<int>(f), us[f][k], vs[f][k]);
+        if (!h) {
+          std::fprintf(stderr, "bench_runtime: no OpenSubdiv patch at face %zu\n", f);
+          return 1;
+        }
+        coords.emplace_back(*h, us[f][k], vs[f][k]);
+      }
+    }
+    const std::size_t num_points = static_cast<std::size_t>(osd_patches.stencils->GetNumStencils());
+    // The three OpenSubdiv evaluators give the same limit surface: check it once per level
+    // (largest position difference against the limit stencils, over the bounding-box diagonal),
+    // so that a wrong setup cannot pass for a fast one.
+    {
+      std::vector<float> sp(3 * n), sdu(3 * n), sdv(3 * n), pp(3 * n), pdu(3 * n), pdv(3 * n),
+          bp(3 * n), bdu(3 * n), bdv(3 * n);
+      Osd::CpuEvaluator::EvalStencils(cv.data(), desc, sp.data(), desc, sdu.data(), desc,
+                                      sdv.data(), desc, table->GetSizes().data(),
+                                      table->GetOffsets().data(), table->GetControlIndices().data(),
+                                      table->GetWeights().data(), table->GetDuWeights().data(),
+                                      table->GetDvWeights().data(), 0, static_cast<int>(n));
+      osd_patches.UpdatePoints(0, num_points);
+      osd_patches.Evaluate(coords.data(), 0, n, pp.data(), pdu.data(), pdv.data());
+      bfr.Evaluate(cv.data(), first, uv.data(), 0, us.size(), bp.data(), bdu.data(), bdv.data());
+      double dp = 0.0, db = 0.0;
+      for (std::size_t i = 0; i < 3 * n; ++i) {
+        dp = std::max(dp, static_cast<double>(std::fabs(pp[i] - sp[i])));
+        db = std::max(db, static_cast<double>(std::fabs(bp[i] - sp[i])));
+      }
+      std::printf(
+          "# level %d: OpenSubdiv's evaluators agree: EvalPatches %.2g, Bfr %.2g of the diagonal "
+          "from the limit stencils (largest position difference)\n",
+          level, dp / diagonal, db / diagonal);
+      if (!(dp <= 1e-5 * diagonal && db <= 1e-5 * diagonal)) {
+        std::fprintf(stderr, "bench_runtime: OpenSubdiv's evaluators disagree\n");
+        return 1;
+      }
+    }
+    LbsMesh lbs(n, 64);
     for (int threads : {1, 2}) {
       Row r;
       r.level = level;
@@ -389,45 +635,68 @@ int main(int argc, char** argv) {
                      table->GetDuWeights().size() + table->GetDvWeights().size()) *
                         4 +
                     (table->GetSizes().size() + table->GetOffsets().size()) * 4;
+      r.osd_patch_bytes = osd_patches.bytes() + coords.size() * sizeof(Osd::PatchCoord);
+      r.osd_bfr_bytes = bfr.bytes() + uv.size() * 4 + first.size() * sizeof(std::size_t);
       r.osd_stencil_cvs =
           static_cast<double>(table->GetControlIndices().size()) / static_cast<double>(n);
       PlanOutputBuffers ob;
       ob.positions = out_p.data();
       ob.normals = out_n.data();
-      r.dermis = TimePerCall(
-          [&] {
-            ParallelFor(threads, plan.num_blocks(), [&](std::size_t b, std::size_t e) {
-              EvaluatePlan(plan, packed.data(), b, e, ob);
-            });
-          },
-          trials, min_seconds);
-      r.osd_eval = TimePerCall(
-          [&] {
-            ParallelFor(threads, n, [&](std::size_t b, std::size_t e) {
-              Osd::CpuEvaluator::EvalStencils(
-                  cv.data(), desc, osd_p.data(), desc, osd_du.data(), desc, osd_dv.data(), desc,
-                  table->GetSizes().data(), table->GetOffsets().data(),
-                  table->GetControlIndices().data(), table->GetWeights().data(),
-                  table->GetDuWeights().data(), table->GetDvWeights().data(), static_cast<int>(b),
-                  static_cast<int>(e));
-            });
-          },
-          trials, min_seconds);
       const OsdVertex* src = reinterpret_cast<const OsdVertex*>(cv.data());
-      r.osd_far = TimePerCall(
-          [&] {
-            ParallelFor(threads, n, [&](std::size_t b, std::size_t e) {
-              table->UpdateValues(src, reinterpret_cast<OsdVertex*>(osd_p.data()),
-                                  static_cast<int>(b), static_cast<int>(e));
-              table->UpdateDerivs(src, reinterpret_cast<OsdVertex*>(osd_du.data()),
-                                  reinterpret_cast<OsdVertex*>(osd_dv.data()), static_cast<int>(b),
-                                  static_cast<int>(e));
-            });
-          },
+      // Every contender of the row, interleaved (the patch table's refined-point update alone
+      // too, to show how much of its time it is).
+      const std::vector<double> t = TimeAlternating(
+          {[&] {
+             ParallelFor(threads, plan.num_blocks(), [&](std::size_t b, std::size_t e) {
+               EvaluatePlan(plan, packed.data(), b, e, ob);
+             });
+           },
+           [&] {
+             ParallelFor(threads, n, [&](std::size_t b, std::size_t e) {
+               Osd::CpuEvaluator::EvalStencils(
+                   cv.data(), desc, osd_p.data(), desc, osd_du.data(), desc, osd_dv.data(), desc,
+                   table->GetSizes().data(), table->GetOffsets().data(),
+                   table->GetControlIndices().data(), table->GetWeights().data(),
+                   table->GetDuWeights().data(), table->GetDvWeights().data(), static_cast<int>(b),
+                   static_cast<int>(e));
+             });
+           },
+           [&] {
+             ParallelFor(threads, num_points,
+                         [&](std::size_t b, std::size_t e) { osd_patches.UpdatePoints(b, e); });
+             ParallelFor(threads, n, [&](std::size_t b, std::size_t e) {
+               osd_patches.Evaluate(coords.data(), b, e, osd_p.data(), osd_du.data(),
+                                    osd_dv.data());
+             });
+           },
+           [&] {
+             ParallelFor(threads, us.size(), [&](std::size_t b, std::size_t e) {
+               bfr.Evaluate(cv.data(), first, uv.data(), b, e, osd_p.data(), osd_du.data(),
+                            osd_dv.data());
+             });
+           },
+           [&] {
+             ParallelFor(threads, n, [&](std::size_t b, std::size_t e) {
+               table->UpdateValues(src, reinterpret_cast<OsdVertex*>(osd_p.data()),
+                                   static_cast<int>(b), static_cast<int>(e));
+               table->UpdateDerivs(src, reinterpret_cast<OsdVertex*>(osd_du.data()),
+                                   reinterpret_cast<OsdVertex*>(osd_dv.data()), static_cast<int>(b),
+                                   static_cast<int>(e));
+             });
+           },
+           [&] { ParallelFor(threads, n, [&](std::size_t b, std::size_t e) { lbs.Skin(b, e); }); },
+           [&] {
+             ParallelFor(threads, num_points,
+                         [&](std::size_t b, std::size_t e) { osd_patches.UpdatePoints(b, e); });
+           }},
           trials, min_seconds);
-      r.lbs = TimePerCall(
-          [&] { ParallelFor(threads, n, [&](std::size_t b, std::size_t e) { lbs.Skin(b, e); }); },
-          trials, min_seconds);
+      r.dermis = t[0];
+      r.osd_eval = t[1];
+      r.osd_patch = t[2];
+      r.osd_bfr = t[3];
+      r.osd_far = t[4];
+      r.lbs = t[5];
+      r.osd_points = t[6];
       if (threads == 1 && SimdPathAvailable(SimdPath::kAvx2)) {
         r.generic = TimePerCall(
             [&] {
@@ -452,27 +721,33 @@ int main(int argc, char** argv) {
   }
 
   std::printf(
-      "\n## Per-sample evaluation, bunny (540 control vertices), Dermis position + normal "
-      "vs OpenSubdiv limit stencils position + du + dv\n\n");
+      "\n## Per-sample evaluation, bunny (%d control vertices), Dermis position + normal "
+      "vs OpenSubdiv %d.%d.%d limit surface position + du + dv\n\n",
+      domain.num_vertices(), OPENSUBDIV_VERSION_MAJOR, OPENSUBDIV_VERSION_MINOR,
+      OPENSUBDIV_VERSION_PATCH);
   std::printf(
-      "| level | samples | threads | Dermis M/s | OSD CpuEvaluator M/s | OSD Far M/s | "
-      "ratio Dermis/OSD (time) | LBS M/s | Dermis generic kernel M/s | Dermis scalar M/s | "
-      "Dermis GPU M/s | OSD CVs/stencil | Dermis MB | OSD MB "
-      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| level | samples | threads | Dermis M/s | OSD stencils CpuEvaluator M/s | OSD stencils "
+      "Far M/s | OSD EvalPatches M/s | of which refined points | OSD Bfr M/s | ratio Dermis/best "
+      "OSD (time) | LBS M/s | "
+      "Dermis generic kernel M/s | Dermis scalar M/s | Dermis GPU M/s | OSD CVs/stencil | "
+      "bytes/sample Dermis | stencils | patches | Bfr "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows) {
-    const double osd = std::min(r.osd_eval, r.osd_far);
     const double ms = static_cast<double>(r.samples) * 1e-6;
+    const double per = 1.0 / static_cast<double>(r.samples);
     char scalar[32] = "-", generic[32] = "-", gpu_col[32] = "-";
     if (r.scalar > 0) std::snprintf(scalar, sizeof(scalar), "%.2f", ms / r.scalar);
     if (r.generic > 0) std::snprintf(generic, sizeof(generic), "%.1f", ms / r.generic);
     if (r.gpu > 0) std::snprintf(gpu_col, sizeof(gpu_col), "%.1f", ms / r.gpu);
     std::printf(
-        "| %d | %zu | %d | %.1f | %.1f | %.1f | %.3f | %.1f | %s | %s | %s | %.1f | %.1f | %.1f "
-        "|\n",
+        "| %d | %zu | %d | %.1f | %.1f | %.1f | %.1f | %.0f %% | %.1f | %.3f | %.1f | %s | %s | %s "
+        "| %.1f | "
+        "%.0f | %.0f | %.0f | %.0f |\n",
         r.level, r.samples, r.threads, ms / r.dermis, ms / r.osd_eval, ms / r.osd_far,
-        r.dermis / osd, ms / r.lbs, generic, scalar, gpu_col, r.osd_stencil_cvs,
-        static_cast<double>(r.dermis_bytes) / 1048576.0,
-        static_cast<double>(r.osd_bytes) / 1048576.0);
+        ms / r.osd_patch, 100.0 * r.osd_points / r.osd_patch, ms / r.osd_bfr,
+        r.dermis / r.best_osd(), ms / r.lbs, generic, scalar, gpu_col, r.osd_stencil_cvs,
+        static_cast<double>(r.dermis_bytes) * per, static_cast<double>(r.osd_bytes) * per,
+        static_cast<double>(r.osd_patch_bytes) * per, static_cast<double>(r.osd_bfr_bytes) * per);
   }
   std::printf("\nDermis GPU: %s (device time of the dispatches, 1 row per level)\n",
               gpu_name.c_str());
@@ -675,14 +950,17 @@ int main(int argc, char** argv) {
       const Row& r = rows[i];
       std::fprintf(j,
                    "    {\"level\": %d, \"samples\": %zu, \"threads\": %d, \"dermis_s\": %.9g, "
-                   "\"osd_cpu_evaluator_s\": %.9g, \"osd_far_s\": %.9g, \"lbs_s\": %.9g, "
+                   "\"osd_cpu_evaluator_s\": %.9g, \"osd_far_s\": %.9g, \"osd_eval_patches_s\": "
+                   "%.9g, \"osd_bfr_s\": %.9g, \"lbs_s\": %.9g, "
                    "\"dermis_generic_s\": %.9g, \"dermis_scalar_s\": %.9g, \"gpu_s\": %.9g, "
                    "\"ratio\": %.6f, "
                    "\"osd_cvs_per_stencil\": %.3f, "
-                   "\"dermis_bytes\": %zu, \"osd_bytes\": %zu}%s\n",
-                   r.level, r.samples, r.threads, r.dermis, r.osd_eval, r.osd_far, r.lbs, r.generic,
-                   r.scalar, r.gpu, r.dermis / std::min(r.osd_eval, r.osd_far), r.osd_stencil_cvs,
-                   r.dermis_bytes, r.osd_bytes, i + 1 < rows.size() ? "," : "");
+                   "\"dermis_bytes\": %zu, \"osd_bytes\": %zu, \"osd_patch_bytes\": %zu, "
+                   "\"osd_bfr_bytes\": %zu}%s\n",
+                   r.level, r.samples, r.threads, r.dermis, r.osd_eval, r.osd_far, r.osd_patch,
+                   r.osd_bfr, r.lbs, r.generic, r.scalar, r.gpu, r.dermis / r.best_osd(),
+                   r.osd_stencil_cvs, r.dermis_bytes, r.osd_bytes, r.osd_patch_bytes,
+                   r.osd_bfr_bytes, i + 1 < rows.size() ? "," : "");
     }
     std::fprintf(j, "  ],\n  \"frames\": [\n");
     for (std::size_t i = 0; i < frames.size(); ++i) {
