@@ -8,8 +8,10 @@
  * output, create one instance. Per frame: build a joint palette (here a procedural wave that
  * bends every joint about its own bind frame; an engine takes it from its animation system),
  * pose every part, evaluate every output into interleaved vertex buffers (position + normal,
- * 24-byte stride). Prints per-frame timing and checks what it produced: finite positions, unit
- * normals, the rest frame unmoved, the posed frames moved. Exit status 0 when all checks hold.
+ * 24-byte stride) and the bound output's tangents where the source has TANGENT or TEXCOORD_0.
+ * Prints per-frame timing and checks what it produced: finite positions, unit normals, unit
+ * tangents orthogonal to them, the rest frame unmoved, the posed frames moved. Exit status 0 when
+ * all checks hold.
  *
  * --gpu (builds with dermis::gpu, dermis/dermis_gpu.h): the evaluation runs on a Vulkan device
  * (the best one, or index DEVICE) through the reference host, which waits and copies the
@@ -126,6 +128,8 @@ typedef struct Part {
   float* cpu_check[2]; /* the CPU's result, to compare with the GPU's */
 #endif
   float* buffers[2]; /* 6 floats per vertex */
+  float* tangents;   /* the bound output's tangents, 4 floats per vertex (NULL: none) */
+  size_t tangent_bytes;
   float* rest[2];
   size_t bytes[2]; /* size of buffers[o] */
   size_t vertices[2];
@@ -236,7 +240,19 @@ int main(int argc, char** argv) {
     desc.threads = 0;
     CHECK(dermis_output_create(character, p, &desc, &part[p].outputs[0]));
     desc.kind = DERMIS_OUTPUT_BOUND;
-    CHECK(dermis_output_create(character, p, &desc, &part[p].outputs[1]));
+    /* Tangents for normal maps where the source has TANGENT or TEXCOORD_0. */
+    desc.tangents = 1;
+    if (dermis_output_create(character, p, &desc, &part[p].outputs[1]) != DERMIS_OK) {
+      printf("part %zu: bound output without tangents (%s)\n", p, dermis_last_error());
+      desc.tangents = 0;
+      CHECK(dermis_output_create(character, p, &desc, &part[p].outputs[1]));
+    }
+    if (dermis_output_has_tangents(part[p].outputs[1])) {
+      const size_t n = dermis_output_vertex_count(part[p].outputs[1]);
+      part[p].tangent_bytes = (4 * n + 1) * sizeof(float);
+      part[p].tangents = calloc(4 * n + 1, sizeof(float));
+      if (!part[p].tangents) return 1;
+    }
     for (int o = 0; o < 2; ++o) {
       const size_t n = dermis_output_vertex_count(part[p].outputs[o]);
       part[p].vertices[o] = n;
@@ -289,9 +305,10 @@ int main(int argc, char** argv) {
     free(engine_names);
     printf(
         "part %zu: %zu control vertices, %zu joints, level %d: %zu vertices %zu triangles, "
-        "bound: %zu vertices\n",
+        "bound: %zu vertices%s\n",
         p, dermis_character_control_vertex_count(character, p), rig->joints, level,
-        part[p].vertices[0], dermis_output_triangle_count(part[p].outputs[0]), part[p].vertices[1]);
+        part[p].vertices[0], dermis_output_triangle_count(part[p].outputs[0]), part[p].vertices[1],
+        part[p].tangents ? " with tangents" : "");
   }
   dermis_instance* instance = NULL;
   CHECK(dermis_instance_create(character, deformer, &instance));
@@ -345,8 +362,14 @@ int main(int argc, char** argv) {
           continue;
         }
 #endif
-        CHECK(dermis_evaluate(instance, part[p].outputs[o], 0, SIZE_MAX, b, 24, part[p].bytes[o],
-                              b + 3, 24, part[p].bytes[o] - 12));
+        if (o == 1 && part[p].tangents) {
+          CHECK(dermis_evaluate_with_tangents(instance, part[p].outputs[o], 0, SIZE_MAX, b, 24,
+                                              part[p].bytes[o], b + 3, 24, part[p].bytes[o] - 12,
+                                              part[p].tangents, 16, part[p].tangent_bytes));
+        } else {
+          CHECK(dermis_evaluate(instance, part[p].outputs[o], 0, SIZE_MAX, b, 24, part[p].bytes[o],
+                                b + 3, 24, part[p].bytes[o] - 12));
+        }
       }
     }
     double t2 = Now();
@@ -377,6 +400,17 @@ int main(int argc, char** argv) {
           if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2]) || fabsf(len - 1.0f) > 1e-4f) {
             if (failures++ < 5)
               fprintf(stderr, "engine_loop: frame %d part %zu vertex %zu: bad output\n", f, p, i);
+          }
+          /* Tangents: unit, orthogonal to the normal, w = +-1. */
+          if (o == 1 && part[p].tangents) {
+            const float* tg = part[p].tangents + 4 * i;
+            const float tl = sqrtf(tg[0] * tg[0] + tg[1] * tg[1] + tg[2] * tg[2]);
+            const float tn = (tg[0] * v[3] + tg[1] * v[4] + tg[2] * v[5]) / len;
+            if (fabsf(tl - 1.0f) > 1e-4f || fabsf(tn) > 1e-4f || fabsf(fabsf(tg[3]) - 1.0f) > 0) {
+              if (failures++ < 5)
+                fprintf(stderr, "engine_loop: frame %d part %zu vertex %zu: bad tangent\n", f, p,
+                        i);
+            }
           }
           if (f == 0) continue;
           const float* r = part[p].rest[o] + 6 * i;
@@ -469,6 +503,7 @@ int main(int argc, char** argv) {
       free(part[p].buffers[o]);
       free(part[p].rest[o]);
     }
+    free(part[p].tangents);
     free((void*)part[p].rig.parent);
     free((void*)part[p].rig.bind);
     free((void*)part[p].rig.inverse);

@@ -2,7 +2,8 @@
 // The per-frame runtime calls do not allocate: this executable replaces the global operator
 // new (every non-aligned form, so that new and delete stay paired under AddressSanitizer) and
 // counts every call while PoseJob::Run(), EvaluateJob::Run() and the C API's
-// dermis_instance_pose() / dermis_evaluate() run, for every deformer.
+// dermis_instance_pose() / dermis_evaluate() (and dermis_evaluate_with_tangents()) run, for
+// every deformer.
 #include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
@@ -120,6 +121,13 @@ TEST_CASE("runtime: per-frame calls do not allocate") {
   dermis_output* out = nullptr;
   REQUIRE(dermis_output_create(c, 0, &desc, &out) == DERMIS_OK);
   std::vector<float> buf(3 * dermis_output_vertex_count(out));
+  // A bound output with tangents (issue 17), evaluated with them each frame.
+  desc.kind = DERMIS_OUTPUT_BOUND;
+  desc.tangents = 1;
+  dermis_output* bound = nullptr;
+  REQUIRE(dermis_output_create(c, 0, &desc, &bound) == DERMIS_OK);
+  const std::size_t nb = dermis_output_vertex_count(bound);
+  std::vector<float> bbuf(10 * nb);
   const long before = g_allocations.load();
   bool c_ok = true;
   for (int frame = 0; frame < 3; ++frame) {
@@ -128,6 +136,10 @@ TEST_CASE("runtime: per-frame calls do not allocate") {
     c_ok = dermis_instance_pose_remapped(inst, 0, palette.data(), 2, remap, 2) == DERMIS_OK && c_ok;
     c_ok = dermis_evaluate(inst, out, 0, SIZE_MAX, buf.data(), 12, buf.size() * 4, nullptr, 12,
                            0) == DERMIS_OK &&
+           c_ok;
+    c_ok = dermis_evaluate_with_tangents(inst, bound, 0, SIZE_MAX, bbuf.data(), 40, bbuf.size() * 4,
+                                         bbuf.data() + 3, 40, bbuf.size() * 4, bbuf.data() + 6, 40,
+                                         bbuf.size() * 4) == DERMIS_OK &&
            c_ok;
   }
   const long c_allocations = g_allocations.load() - before;
@@ -138,6 +150,7 @@ TEST_CASE("runtime: per-frame calls do not allocate") {
   CHECK(std::string(dermis_last_error()).find("needs 2 skin matrices, got 1") != std::string::npos);
   CHECK(dermis_evaluate(inst, out, 5, 2, buf.data(), 12, buf.size() * 4, nullptr, 0, 0) ==
         DERMIS_ERROR_INVALID_ARGUMENT);
+  dermis_output_destroy(bound);
   dermis_output_destroy(out);
   dermis_instance_destroy(inst);
   dermis_character_destroy(c);

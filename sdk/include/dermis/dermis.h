@@ -146,6 +146,8 @@ typedef struct dermis_output_desc {
   int32_t level;               /**< Segments per control-face edge, 1..64 (default 4). */
   int32_t displacement_levels; /**< -1: all (default), 0: none, n: the first n. */
   int32_t threads;             /**< Threads of the precomputation, 0: all cores (default 1). */
+  int32_t tangents;            /**< 1: precompute tangent frames (bound outputs only; see "Tangents"
+                                    below; 16 bytes per vertex). Default 0. */
 } dermis_output_desc;
 
 /** Thread-safe. */
@@ -230,6 +232,30 @@ DERMIS_API dermis_status dermis_evaluate(const dermis_instance* instance,
  * range); 0 for an empty range or NULL. Thread-safe. */
 DERMIS_API size_t dermis_output_required_bytes(const dermis_output* output, size_t block_begin,
                                                size_t block_end, size_t stride);
+
+/* ---- Tangents (normal maps on bound outputs; docs/engine-integration.md, "Tangents") ----
+ * A bound output created with dermis_output_desc.tangents = 1 carries each source vertex's bind
+ * tangent (the glTF TANGENT, else one made from TEXCOORD_0) expressed in the displaced
+ * surface's own frame at the rest pose; every frame it is re-expressed with the posed surface,
+ * so it stretches and twists with the skin. At the rest pose it is the source tangent made
+ * orthogonal to the surface normal. Creating such an output fails (naming the mesh and
+ * primitive) when a bound vertex's primitive has neither tangents nor texture coordinates, and
+ * for a DERMIS_OUTPUT_LEVEL output. */
+
+/** 1 if the output was created with tangents, else 0 (also for NULL). Thread-safe. */
+DERMIS_API int32_t dermis_output_has_tangents(const dermis_output* output);
+/** dermis_evaluate() that also writes vertex i's tangent, 4 floats at tangents + i *
+ * tangent_stride bytes: unit xyz orthogonal to the normal and w = +1 or -1, the bitangent
+ * being cross(normal, xyz) * w (glTF's convention). `tangents_bytes` is checked like the other
+ * sizes (dermis_output_required_bytes() with tangent_stride, plus 4 bytes for the fourth
+ * float; tangent_stride at least 16): too small, a NULL tangent buffer or an output without
+ * tangents is an error and nothing is written. No allocation. Thread-safe as
+ * dermis_evaluate(). */
+DERMIS_API dermis_status dermis_evaluate_with_tangents(
+    const dermis_instance* instance, const dermis_output* output, size_t block_begin,
+    size_t block_end, float* positions, size_t position_stride, size_t positions_bytes,
+    float* normals, size_t normal_stride, size_t normals_bytes, float* tangents,
+    size_t tangent_stride, size_t tangents_bytes);
 
 #ifdef __cplusplus
 }

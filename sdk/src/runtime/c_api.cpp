@@ -209,6 +209,7 @@ void dermis_output_desc_init(dermis_output_desc* desc) {
   desc->level = 4;
   desc->displacement_levels = -1;
   desc->threads = 1;
+  desc->tangents = 0;
 }
 
 dermis_status dermis_output_create(const dermis_character* c, size_t part,
@@ -229,6 +230,7 @@ dermis_status dermis_output_create(const dermis_character* c, size_t part,
   spec.level = desc->level;
   spec.displacement_levels = desc->displacement_levels;
   spec.threads = desc->threads;
+  spec.tangents = desc->tangents != 0;
   std::unique_ptr<dermis::RuntimeOutput> o;
   const dermis::Status s = dermis::RuntimeOutput::Build(*c->impl, part, spec, &o);
   if (!s.ok()) {
@@ -379,17 +381,24 @@ dermis_status dermis_instance_pose_remapped(dermis_instance* instance, size_t pa
   return DERMIS_OK;
 }
 
-dermis_status dermis_evaluate(const dermis_instance* instance, const dermis_output* output,
-                              size_t block_begin, size_t block_end, float* positions,
-                              size_t position_stride, size_t positions_bytes, float* normals,
-                              size_t normal_stride, size_t normals_bytes) {
-  if (!instance || !output)
-    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, "dermis_evaluate: null handle");
+namespace {
+
+// dermis_evaluate() and dermis_evaluate_with_tangents() (`fn` names the caller in messages):
+// every buffer size is checked before anything is written.
+dermis_status Evaluate(const char* fn, const dermis_instance* instance, const dermis_output* output,
+                       size_t block_begin, size_t block_end, float* positions,
+                       size_t position_stride, size_t positions_bytes, float* normals,
+                       size_t normal_stride, size_t normals_bytes, float* tangents,
+                       size_t tangent_stride, size_t tangents_bytes) {
+  // (Messages are built only on failure: a successful call allocates nothing.)
+  if (!instance || !output) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT, std::string(fn) + ": null handle");
+  }
   const size_t need_p =
       dermis_output_required_bytes(output, block_begin, block_end, position_stride);
   if (positions && positions_bytes < need_p) {
     return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
-                "dermis_evaluate: the position buffer holds " + std::to_string(positions_bytes) +
+                std::string(fn) + ": the position buffer holds " + std::to_string(positions_bytes) +
                     " bytes, blocks [" + std::to_string(block_begin) + ", " +
                     std::to_string(std::min(block_end, dermis_output_block_count(output))) +
                     ") with stride " + std::to_string(position_stride) + " need " +
@@ -399,9 +408,26 @@ dermis_status dermis_evaluate(const dermis_instance* instance, const dermis_outp
       normals ? dermis_output_required_bytes(output, block_begin, block_end, normal_stride) : 0;
   if (normals && normals_bytes < need_n) {
     return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
-                "dermis_evaluate: the normal buffer holds " + std::to_string(normals_bytes) +
+                std::string(fn) + ": the normal buffer holds " + std::to_string(normals_bytes) +
                     " bytes, the range with stride " + std::to_string(normal_stride) + " needs " +
                     std::to_string(need_n) + " (nothing written)");
+  }
+  if (tangents) {
+    if (output->impl->tangent_frames().empty()) {
+      return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                  std::string(fn) +
+                      ": the output was created without tangents (dermis_output_desc.tangents)");
+    }
+    // 4 floats at the last vertex: one float more than dermis_output_required_bytes() counts.
+    size_t need_t = dermis_output_required_bytes(output, block_begin, block_end, tangent_stride);
+    if (need_t > 0) need_t += sizeof(float);
+    if (tangent_stride < 4 * sizeof(float) || tangents_bytes < need_t) {
+      return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                  std::string(fn) + ": the tangent buffer holds " + std::to_string(tangents_bytes) +
+                      " bytes, the range with stride " + std::to_string(tangent_stride) +
+                      " needs " + std::to_string(need_t) +
+                      " (and a stride of at least 16; nothing written)");
+    }
   }
   dermis::EvaluateJob job;
   job.output = output->impl.get();
@@ -412,12 +438,26 @@ dermis_status dermis_evaluate(const dermis_instance* instance, const dermis_outp
   job.buffers.position_stride = position_stride;
   job.buffers.normals = normals;
   job.buffers.normal_stride = normal_stride;
+  job.buffers.tangents = tangents;
+  job.buffers.tangent_stride = tangent_stride;
   if (!job.Run()) {
     return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
-                "dermis_evaluate: invalid arguments (an output of another character, a block "
-                "range past the end, a null position buffer or a stride below 12 bytes)");
+                std::string(fn) +
+                    ": invalid arguments (an output of another character, a block range past the "
+                    "end, a null position buffer or a stride below 12 bytes)");
   }
   return DERMIS_OK;
+}
+
+}  // namespace
+
+dermis_status dermis_evaluate(const dermis_instance* instance, const dermis_output* output,
+                              size_t block_begin, size_t block_end, float* positions,
+                              size_t position_stride, size_t positions_bytes, float* normals,
+                              size_t normal_stride, size_t normals_bytes) {
+  return Evaluate("dermis_evaluate", instance, output, block_begin, block_end, positions,
+                  position_stride, positions_bytes, normals, normal_stride, normals_bytes, nullptr,
+                  0, 0);
 }
 
 dermis_status dermis_output_plan(const dermis_output* o, const void** blocks, size_t* block_bytes,
@@ -447,3 +487,25 @@ dermis_status dermis_instance_packed_patches(const dermis_instance* instance, si
 }
 
 }  // extern "C"
+
+// ---- Tangents (issue 17): dermis_output_has_tangents, dermis_evaluate_with_tangents.
+
+int32_t dermis_output_has_tangents(const dermis_output* output) {
+  return output && !output->impl->tangent_frames().empty() ? 1 : 0;
+}
+
+dermis_status dermis_evaluate_with_tangents(const dermis_instance* instance,
+                                            const dermis_output* output, size_t block_begin,
+                                            size_t block_end, float* positions,
+                                            size_t position_stride, size_t positions_bytes,
+                                            float* normals, size_t normal_stride,
+                                            size_t normals_bytes, float* tangents,
+                                            size_t tangent_stride, size_t tangents_bytes) {
+  if (!tangents) {
+    return Fail(DERMIS_ERROR_INVALID_ARGUMENT,
+                "dermis_evaluate_with_tangents: null tangent buffer (use dermis_evaluate)");
+  }
+  return Evaluate("dermis_evaluate_with_tangents", instance, output, block_begin, block_end,
+                  positions, position_stride, positions_bytes, normals, normal_stride,
+                  normals_bytes, tangents, tangent_stride, tangents_bytes);
+}

@@ -233,6 +233,8 @@ bool EvaluatePlan(const EvaluationPlan& plan, const float* packed_patches, std::
   if (block_begin == block_end) return true;
   if (!packed_patches || !out.positions || out.position_stride < 3 * sizeof(float)) return false;
   if (out.normals && out.normal_stride < 3 * sizeof(float)) return false;
+  if (out.tangents && (!out.tangent_frames || out.tangent_stride < 4 * sizeof(float))) return false;
+  if (out.derivatives && out.derivative_stride < 6 * sizeof(float)) return false;
   const kernels::Backend* backend = kernels::FindBackend(path);
   if (backend == nullptr) return false;
   backend->evaluate(PlanView{plan.blocks(), plan.block_data()}, packed_patches, block_begin,

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "dermis/surface/bspline_displacement.h"
+#include "runtime/tangent_frames.h"
 
 namespace dermis {
 
@@ -159,6 +160,15 @@ Status RuntimeOutput::Build(const RuntimeCharacter& character, std::size_t part,
     s = EvaluationPlan::Build(*surface.domain, disp, loc.data(), loc.size(), po, &r->plan_);
   }
   if (!s.ok()) return s.WithContext(name + ", part " + std::to_string(part));
+  if (spec.tangents) {
+    if (spec.kind != OutputKind::kBound) {
+      return Status::InvalidInput(name + ", part " + std::to_string(part) +
+                                  ": tangents need a bound output (a tessellation level has no "
+                                  "texture coordinates)");
+    }
+    s = BuildTangentFrames(character, part, r->plan_, &r->tangent_frames_);
+    if (!s.ok()) return s;
+  }
   *out = std::move(r);
   return Status::Ok();
 }
@@ -267,8 +277,13 @@ bool EvaluateJob::Validate() const {
 bool EvaluateJob::Run() const {
   if (!Validate()) return false;
   const std::size_t end = std::min(block_end, output->plan().num_blocks());
-  return EvaluatePlan(output->plan(), instance->packed_patches(output->part()), block_begin, end,
-                      buffers, path);
+  PlanOutputBuffers b = buffers;
+  if (b.tangents) {
+    if (output->tangent_frames().empty()) return false;
+    b.tangent_frames = output->tangent_frames().data();
+  }
+  return EvaluatePlan(output->plan(), instance->packed_patches(output->part()), block_begin, end, b,
+                      path);
 }
 
 }  // namespace dermis

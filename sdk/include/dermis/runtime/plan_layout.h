@@ -59,11 +59,24 @@ struct PlanView {
 
 /// Caller-owned output of EvaluatePlan() and of every kernel: sample i's position (3 floats)
 /// at positions + i * position_stride bytes, its unit normal likewise (normals may be null).
+/// The optional outputs below cost nothing when null (CPU kernels only; the GPU shader writes
+/// positions and normals).
 struct PlanOutputBuffers {
   float* positions = nullptr;
   std::size_t position_stride = 3 * sizeof(float);
   float* normals = nullptr;
   std::size_t normal_stride = 3 * sizeof(float);
+  /// Tangents: 4 floats per sample (unit xyz orthogonal to the normal, w = the handedness) at
+  /// tangents + i * tangent_stride bytes. Needs `tangent_frames`: 4 floats per sample
+  /// (a, b, w, unused), the tangent being a dS/du + b dS/dv (face coordinates) made orthogonal
+  /// to the normal and normalised (docs/engine-integration.md, "Tangents").
+  float* tangents = nullptr;
+  std::size_t tangent_stride = 4 * sizeof(float);
+  const float* tangent_frames = nullptr;
+  /// First derivatives dS/du then dS/dv of the displaced surface in the face's (u, v)
+  /// (6 floats per sample) at derivatives + i * derivative_stride bytes.
+  float* derivatives = nullptr;
+  std::size_t derivative_stride = 6 * sizeof(float);
 };
 
 }  // namespace dermis

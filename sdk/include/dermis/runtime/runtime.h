@@ -91,6 +91,9 @@ struct OutputSpec {
   int level = 4;                 ///< kLevel: segments per control-face edge, 1..64.
   int displacement_levels = -1;  ///< Displacement levels (-1: all, 0: the domain surface).
   int threads = 1;               ///< Threads of the precomputation (0: all cores).
+  /// kBound only: precompute tangent frames so that EvaluateJob can write tangents (from the
+  /// source's TANGENT, else from TEXCOORD_0; 16 bytes per vertex; docs/engine-integration.md).
+  bool tangents = false;
 };
 
 /// One part's output, precomputed (EvaluationPlan): immutable, thread-shareable. Keeps a
@@ -110,8 +113,12 @@ class RuntimeOutput {
   /// primitives' indices apply).
   const std::vector<std::uint32_t>& triangles() const { return triangles_; }
   const EvaluationPlan& plan() const { return plan_; }
-  /// Bytes the output holds (plan and triangles).
-  std::size_t memory_bytes() const { return plan_.memory_bytes() + triangles_.capacity() * 4; }
+  /// OutputSpec::tangents: 4 floats per vertex (PlanOutputBuffers::tangent_frames); else empty.
+  const std::vector<float>& tangent_frames() const { return tangent_frames_; }
+  /// Bytes the output holds (plan, triangles, tangent frames).
+  std::size_t memory_bytes() const {
+    return plan_.memory_bytes() + triangles_.capacity() * 4 + tangent_frames_.capacity() * 4;
+  }
 
  private:
   RuntimeOutput() = default;
@@ -120,6 +127,7 @@ class RuntimeOutput {
   OutputSpec spec_;
   EvaluationPlan plan_;
   std::vector<std::uint32_t> triangles_;
+  std::vector<float> tangent_frames_;
 };
 
 /// One posed instance of a character: the deformers (the sweep keeps history from frame to
@@ -182,7 +190,9 @@ struct EvaluateJob {
   const RuntimeInstance* instance = nullptr;
   std::size_t block_begin = 0;
   std::size_t block_end = SIZE_MAX;  ///< Clamped to output->plan().num_blocks().
-  PlanOutputBuffers buffers;         ///< output->num_vertices() entries each.
+  /// output->num_vertices() entries each. buffers.tangents needs an output built with
+  /// OutputSpec::tangents (Run() fails otherwise); Run() supplies tangent_frames itself.
+  PlanOutputBuffers buffers;
   SimdPath path = SimdPath::kAuto;
 
   bool Validate() const;

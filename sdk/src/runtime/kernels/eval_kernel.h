@@ -10,6 +10,7 @@
 // function of external linkage is ever compiled with two sets of flags.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -116,6 +117,45 @@ DERMIS_INLINE void AccumulateCorner(const float* patch, const float* data, V3* s
   *sv = Madd(Madd(Madd(*sv, wv, xp), m10, xx), m11, xy);
 }
 
+// Float pointer `bytes` bytes past `base`.
+DERMIS_INLINE float* At(float* base, std::size_t bytes) {
+  return reinterpret_cast<float*>(reinterpret_cast<unsigned char*>(base) + bytes);
+}
+
+// The optional per-lane outputs of one block (PlanOutputBuffers::tangents, ::derivatives):
+// lane i's derivatives su, sv (d[0..5][i]) and unit normal nrm. The tangent is the sample's
+// frame coefficients (a, b) applied to the derivatives, made orthogonal to the normal by one
+// Gram-Schmidt step and normalised; where that vanishes (a degenerate surface), any unit
+// vector orthogonal to the normal.
+DERMIS_INLINE void WriteExtras(const PlanOutputBuffers& out, std::size_t index,
+                               const float (&d)[6][kPlanLanes], int i, const float* nrm) {
+  if (out.derivatives) {
+    float* o = At(out.derivatives, index * out.derivative_stride);
+    for (int k = 0; k < 6; ++k) o[k] = d[k][i];
+  }
+  if (out.tangents) {
+    const float* c = out.tangent_frames + 4 * index;
+    float t[3];
+    for (int k = 0; k < 3; ++k) t[k] = c[0] * d[k][i] + c[1] * d[3 + k][i];
+    const float tn = t[0] * nrm[0] + t[1] * nrm[1] + t[2] * nrm[2];
+    for (int k = 0; k < 3; ++k) t[k] -= tn * nrm[k];
+    float l2 = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
+    if (!(l2 > 1e-30f)) {
+      // The axis least aligned with the normal, made orthogonal to it.
+      const float ax[3] = {std::fabs(nrm[0]), std::fabs(nrm[1]), std::fabs(nrm[2])};
+      const int k0 = ax[0] <= ax[1] && ax[0] <= ax[2] ? 0 : (ax[1] <= ax[2] ? 1 : 2);
+      for (int k = 0; k < 3; ++k) t[k] = (k == k0 ? 1.0f : 0.0f) - nrm[k0] * nrm[k];
+      l2 = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
+    }
+    const float inv = 1.0f / std::sqrt(l2);
+    float* o = At(out.tangents, index * out.tangent_stride);
+    o[0] = t[0] * inv;
+    o[1] = t[1] * inv;
+    o[2] = t[2] * inv;
+    o[3] = c[2];
+  }
+}
+
 // Blocks [begin, end) of a plan into caller-owned strided float buffers.
 DERMIS_INLINE void EvaluateBlocks(const PlanView& plan, const float* patches, std::size_t begin,
                                   std::size_t end, const PlanOutputBuffers& out) {
@@ -148,6 +188,16 @@ DERMIS_INLINE void EvaluateBlocks(const PlanView& plan, const float* patches, st
     simd::Store(n.y, lanes[4]);
     simd::Store(n.z, lanes[5]);
     const unsigned ok_bits = simd::Bits(ok);
+    const bool extras = out.tangents || out.derivatives;
+    float d[6][kPlanLanes];
+    if (extras) {
+      simd::Store(su.x, d[0]);
+      simd::Store(su.y, d[1]);
+      simd::Store(su.z, d[2]);
+      simd::Store(sv.x, d[3]);
+      simd::Store(sv.y, d[4]);
+      simd::Store(sv.z, d[5]);
+    }
     for (int i = 0; i < block.count; ++i) {
       const std::size_t index = static_cast<std::size_t>(block.index[i]);
       float* pos = reinterpret_cast<float*>(reinterpret_cast<unsigned char*>(out.positions) +
@@ -169,6 +219,21 @@ DERMIS_INLINE void EvaluateBlocks(const PlanView& plan, const float* patches, st
           nrm[1] = fb[1];
           nrm[2] = fb[2];
         }
+      }
+      if (extras) {
+        float nrm[3];
+        if ((ok_bits >> i) & 1u) {
+          nrm[0] = lanes[3][i];
+          nrm[1] = lanes[4][i];
+          nrm[2] = lanes[5][i];
+        } else {
+          const float* fb =
+              patches + static_cast<std::size_t>(block.dominant[i]) * kPackedPatchStride + 27;
+          nrm[0] = fb[0];
+          nrm[1] = fb[1];
+          nrm[2] = fb[2];
+        }
+        WriteExtras(out, index, d, i, nrm);
       }
     }
   }
