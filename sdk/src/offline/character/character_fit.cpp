@@ -279,6 +279,9 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
   // mesh follows the component within max_deviation of its diagonal.
   fo.remesh.max_deviation = options.max_deviation;
   fo.remesh.sizing.max_turn = options.max_turn;
+  if (options.remesh_creases) {
+    fo.remesh.crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
+  }
   fo.clamp_control_vertices = true;
   FitInput input;
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
