@@ -174,7 +174,9 @@ struct Settings {
   std::string rows = "bunny,torus,characters";
   int control_vertices = 540, torus_vertices = 200, repeat = 3;
   bool detail = false, mba = false;
-  bool where = false;  ///< --where: the largest character distances and what is there.
+  bool where = false;             ///< --where: the largest character distances and what is there.
+  bool no_crease_remesh = false;  ///< --no-crease-remesh: the remesh ignores creases.
+  int compare_simplified = -1;    ///< --compare-simplified 0|1 (-1: the default).
   ControlMeshMethod method = ControlMeshMethod::kRemesh;
   double density = -1.0;          // -1: FitOptions' default
   int control_fit = -1;           // -1: FitOptions' default
@@ -561,6 +563,8 @@ int RunCharacters(const Settings& st) {
     if (st.crease_samples >= 0.0) options.crease_samples = st.crease_samples;
     if (st.crease_angle >= 0.0) options.crease_angle = st.crease_angle;
     if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
+    if (st.no_crease_remesh) options.remesh_creases = false;
+    if (st.compare_simplified >= 0) options.compare_simplified = st.compare_simplified != 0;
     Character ch;
     CharacterFitReport report;
     if (s.ok()) s = FitCharacter(asset, options, &ch, &report);
@@ -625,10 +629,12 @@ int RunCharacters(const Settings& st) {
       const ControlMeshInfo& c = report.part_control_meshes[p];
       std::printf(
           "  %s part %zu: %s, %d control vertices (target %d), valence 4 %.1f%%, corners "
-          "%.1f..%.1f deg%s%s\n",
+          "%.1f..%.1f deg; creases: %d of %d source edges kept, %d chains (%d closed), %d "
+          "control crease edges%s%s\n",
           name, p, c.method.c_str(), c.quality.vertices, c.quality.target_vertices,
           100.0 * c.quality.valence4_share, c.quality.min_corner_angle_deg,
-          c.quality.max_corner_angle_deg,
+          c.quality.max_corner_angle_deg, c.quality.crease_edges_kept, c.quality.crease_edges,
+          c.quality.crease_chains, c.quality.crease_closed_chains, c.quality.control_crease_edges,
           c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str());
     }
   }
@@ -673,6 +679,10 @@ int main(int argc, char** argv) {
       st.node_weight = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--budget") == 0 && i + 1 < argc) {
       st.budget = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--no-crease-remesh") == 0) {
+      st.no_crease_remesh = true;
+    } else if (std::strcmp(argv[i], "--compare-simplified") == 0 && i + 1 < argc) {
+      st.compare_simplified = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--where") == 0) {
       st.where = true;
     } else if (std::strcmp(argv[i], "--mba") == 0) {

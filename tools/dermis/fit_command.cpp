@@ -75,6 +75,13 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
     m["triangle_vertices"] = q.triangle_vertices;
     m["quads_paired"] = q.quads_paired;
     m["triangles_unpaired"] = q.triangles_unpaired;
+    if (q.crease_edges > 0) {
+      m["crease_edges"] = q.crease_edges;
+      m["crease_edges_kept"] = q.crease_edges_kept;
+      m["crease_chains"] = q.crease_chains;
+      m["crease_closed_chains"] = q.crease_closed_chains;
+      m["control_crease_edges"] = q.control_crease_edges;
+    }
     if (q.grown_target > 0) {
       m["grown_target"] = q.grown_target;
       m["deviation_edge_lengths"] = q.deviation;
@@ -123,8 +130,7 @@ nlohmann::ordered_json EffectiveOptionsJson(const FitOptions& f) {
   return o;
 }
 
-nlohmann::ordered_json ReportJson(const FitArgs& a, const FitOptions& options,
-                                  const FitReport& r) {
+nlohmann::ordered_json ReportJson(const FitArgs& a, const FitOptions& options, const FitReport& r) {
   nlohmann::ordered_json j;
   j["schema"] = "dermis.fit/1";
   j["dermis_version"] = DERMIS_VERSION;
@@ -344,10 +350,10 @@ int RunFit(const FitArgs& a) {
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
-    s = WriteFileAtomically(
-        a.report,
-        ReportJson(a, options, report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
-            "\n");
+    s = WriteFileAtomically(a.report,
+                            ReportJson(a, options, report)
+                                    .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
+                                "\n");
     if (!s.ok()) return Fail(kCommand, s);
   }
   if (!a.quiet && !report.control_mesh.fallback.empty()) {

@@ -9,7 +9,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <tuple>
+#include <utility>
 
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "tri_edit_mesh.h"
@@ -22,14 +24,48 @@ using remesh_detail::TriEditMesh;
 class Remesher {
  public:
   Remesher(const ReferenceSurface& reference, const SizingField& sizing,
-           const IsotropicRemeshOptions& options, IsotropicRemeshStats* stats)
+           const IsotropicRemeshOptions& options, IsotropicRemeshStats* stats,
+           const CreaseChains* creases)
       : ref_(reference),
+        cr_(creases),
         sizing_(sizing),
         options_(options),
         stats_(stats),
         cos_max_change_(std::cos(options.max_normal_change_deg * 3.14159265358979323846 / 180.0)) {}
 
   TriEditMesh m;
+
+  // Creases: each vertex's tag in m.feature, the crease edges (a < b) with their chain.
+  int Feature(Index v) const { return m.feature[static_cast<std::size_t>(v)]; }
+  int CreaseChain(Index a, Index b) const {
+    if (crease_.empty()) return -1;
+    const auto it = crease_.find({std::min(a, b), std::max(a, b)});
+    return it == crease_.end() ? -1 : it->second;
+  }
+  // The two crease neighbours of crease vertex v (false if it has not exactly two).
+  bool CreaseNeighbors(Index v, Index* p, Index* q) const {
+    std::vector<Index> ring;
+    m.Neighbors(v, &ring);
+    int found = 0;
+    for (Index w : ring) {
+      if (CreaseChain(v, w) < 0) continue;
+      if (found == 0) *p = w;
+      if (found == 1) *q = w;
+      ++found;
+    }
+    return found == 2;
+  }
+  // Where crease vertex v goes on its chain: between its crease neighbours, splitting the span
+  // in the ratio t (-1: in proportion to the sizes); its position if it cannot move.
+  Vec3 CreaseTarget(Index v, double t) const {
+    Index p = kInvalidIndex, q = kInvalidIndex;
+    if (!cr_ || Feature(v) < 0 || !CreaseNeighbors(v, &p, &q)) return m.position(v);
+    if (t < 0.0) {
+      const double hp = EdgeSize(p, v), hn = EdgeSize(v, q);
+      t = hp / (hp + hn);
+    }
+    return cr_->Between(Feature(v), m.position(p), m.position(q), t);
+  }
 
   Vec3 FaceNormal(Index f) const {
     const std::array<Index, 3>& t = m.face(f);
@@ -58,6 +94,10 @@ class Remesher {
                             m.position(forward ? b : a), 0.5);
   }
   double EdgeSize(Index a, Index b) const { return 0.5 * (Size(a) + Size(b)); }
+  // Whether the chord from p to q of chain c cuts the crease by more than allowed for size h.
+  bool ChordTooFar(int c, const Vec3& p, const Vec3& q, double h) const {
+    return cr_ && c >= 0 && cr_->ChordDeviation(c, p, q) > options_.crease_chord_error * h;
+  }
   double Length(Index a, Index b) const { return glm::length(m.position(a) - m.position(b)); }
   Vec3 ProjectInside(const Vec3& p, const Vec3& n, double reach) const {
     return ref_.Project(p, n, reach).point;
@@ -82,7 +122,10 @@ class Remesher {
         const Index a = e[0], b = e[1];
         if (!m.HasEdge(a, b)) continue;
         const double h = EdgeSize(a, b);
-        if (!(Length(a, b) > options_.split_ratio * h)) continue;
+        if (!(Length(a, b) > options_.split_ratio * h) &&
+            !ChordTooFar(CreaseChain(a, b), m.position(a), m.position(b), h)) {
+          continue;
+        }
         Split(a, b);
         ++splits;
       }
@@ -94,12 +137,21 @@ class Remesher {
     const double h = EdgeSize(a, b);
     Vec3 mid = 0.5 * (m.position(a) + m.position(b));
     const Vec3 n = EdgeNormal(a, b);
+    const int chain = CreaseChain(a, b);
     if (m.IsBoundaryEdge(a, b)) {
       mid = LoopMidpoint(a, b);
+    } else if (chain >= 0 && cr_) {
+      mid = cr_->Between(chain, m.position(a), m.position(b), 0.5);
     } else {
       mid = ProjectInside(mid, n, h);
     }
     const Index v = m.SplitEdge(a, b, mid);
+    if (chain >= 0) {
+      m.feature[static_cast<std::size_t>(v)] = chain;
+      crease_.erase({std::min(a, b), std::max(a, b)});
+      crease_[{std::min(a, v), std::max(a, v)}] = chain;
+      crease_[{std::min(b, v), std::max(b, v)}] = chain;
+    }
     UpdateSize(v);
     if (stats_) ++stats_->splits;
     return v;
@@ -116,6 +168,22 @@ class Remesher {
     plans->clear();
     const bool ab = m.IsBoundaryVertex(a), bb = m.IsBoundaryVertex(b);
     const Vec3 mid = 0.5 * (m.position(a) + m.position(b));
+    const int chain = CreaseChain(a, b);
+    if (chain >= 0 || Feature(a) != kNoFeature || Feature(b) != kNoFeature) {
+      // Features: a crease vertex leaves only along its crease, a corner never; the survivor
+      // stays where it is unless both ends are on the crease (then half way along it).
+      const bool boundary_edge = m.IsBoundaryEdge(a, b);
+      auto removable = [&](Index v) {
+        if (m.IsBoundaryVertex(v) && !boundary_edge) return false;
+        return Feature(v) == kNoFeature || (Feature(v) >= 0 && chain >= 0);
+      };
+      if (chain >= 0 && cr_ && Feature(a) >= 0 && Feature(b) >= 0) {
+        plans->push_back({a, b, cr_->Between(chain, m.position(a), m.position(b), 0.5)});
+      }
+      if (removable(b)) plans->push_back({b, a, m.position(a)});
+      if (removable(a)) plans->push_back({a, b, m.position(b)});
+      return;
+    }
     if (m.IsBoundaryEdge(a, b)) {
       plans->push_back({a, b, LoopMidpoint(a, b)});
     } else if (ab && bb) {
@@ -184,6 +252,18 @@ class Remesher {
       }
     }
     if (new_angle < std::min(options_.min_angle_deg, old_angle)) return -1.0;
+    // Along a crease: the new crease edges still follow it.
+    if (CreaseChain(from, to) >= 0) {
+      std::vector<Index> ring;
+      for (Index v : {from, to}) {
+        m.Neighbors(v, &ring);
+        for (Index w : ring) {
+          if (w == from || w == to) continue;
+          const int c = CreaseChain(v, w);
+          if (ChordTooFar(c, pos, m.position(w), h_new)) return -1.0;
+        }
+      }
+    }
     const double error = std::max(d_from, d_to);
     const double limit = options_.max_collapse_error * std::min(h_new, EdgeSize(from, to));
     return error <= limit ? error : -1.0;
@@ -204,6 +284,16 @@ class Remesher {
     }
     if (!best) return false;
     const CollapsePlan p = *best;
+    if (!crease_.empty()) {
+      std::vector<Index> ring;
+      m.Neighbors(p.from, &ring);
+      for (Index w : ring) {
+        const int c = CreaseChain(p.from, w);
+        if (c < 0) continue;
+        crease_.erase({std::min(p.from, w), std::max(p.from, w)});
+        if (w != p.to) crease_[{std::min(p.to, w), std::max(p.to, w)}] = c;
+      }
+    }
     m.Collapse(p.from, p.to);
     m.position(p.to) = p.pos;
     UpdateSize(p.to);
@@ -250,7 +340,7 @@ class Remesher {
     m.Edges(&edges);
     for (const auto& e : edges) {
       const Index a = e[0], b = e[1];
-      if (!m.HasEdge(a, b) || m.IsBoundaryEdge(a, b)) continue;
+      if (!m.HasEdge(a, b) || m.IsBoundaryEdge(a, b) || CreaseChain(a, b) >= 0) continue;
       const Index f1 = m.DirectedEdgeFace(a, b), f2 = m.DirectedEdgeFace(b, a);
       if (f1 == kInvalidIndex || f2 == kInvalidIndex) continue;
       const Index c = m.Opposite(f1, a, b), d = m.Opposite(f2, a, b);
@@ -266,6 +356,9 @@ class Remesher {
       const double new_min = std::min(MinAngle(pa, pd, pc), MinAngle(pd, pb, pc));
       const bool sliver = new_min > old_min + 10.0 && (after <= before || old_min < 10.0);
       if ((after >= before && !sliver) || !m.CanFlip(a, b)) continue;
+      // Along creases a flip may join a crease vertex's two neighbours into a flat triangle:
+      // with creases, no flip makes a triangle sharper than min_angle_deg (or the old pair).
+      if (!crease_.empty() && new_min < std::min(options_.min_angle_deg, old_min)) continue;
       const Vec3 n1 = glm::cross(pb - pa, pc - pa), n2 = glm::cross(pa - pb, pd - pb);
       const Vec3 n3 = glm::cross(pd - pa, pc - pa), n4 = glm::cross(pb - pd, pc - pd);
       const double l1 = glm::length(n1), l2 = glm::length(n2), l3 = glm::length(n3),
@@ -298,6 +391,11 @@ class Remesher {
       if (!m.vertex_alive(v)) continue;
       const Vec3 p = m.position(v);
       target[static_cast<std::size_t>(v)] = p;
+      if (Feature(v) == kCornerFeature) continue;
+      if (Feature(v) >= 0) {
+        target[static_cast<std::size_t>(v)] = CreaseTarget(v, -1.0);
+        continue;
+      }
       if (m.IsBoundaryVertex(v)) {
         Index prev = kInvalidIndex, next = kInvalidIndex;
         m.BoundaryNeighbors(v, &prev, &next);
@@ -401,6 +499,11 @@ class Remesher {
       if (folds == 0 || round >= rounds) return folds;
       for (Index v = 0; v < m.num_vertex_slots(); ++v) {
         if (!marked[static_cast<std::size_t>(v)]) continue;
+        if (Feature(v) == kCornerFeature) continue;
+        if (Feature(v) >= 0) {
+          m.position(v) = CreaseTarget(v, 0.5);
+          continue;
+        }
         if (m.IsBoundaryVertex(v)) {
           Index prev = kInvalidIndex, next = kInvalidIndex;
           m.BoundaryNeighbors(v, &prev, &next);
@@ -421,16 +524,37 @@ class Remesher {
   void Load(const RemeshTriangles& mesh) {
     m.Init(mesh.positions, mesh.triangles);
     m.loop = mesh.loop;
+    if (cr_ && mesh.feature.size() == mesh.positions.size()) {
+      m.feature = mesh.feature;
+      for (const auto& e : mesh.crease_edges) {
+        const Index a = static_cast<Index>(e[0]), b = static_cast<Index>(e[1]);
+        crease_[{std::min(a, b), std::max(a, b)}] = static_cast<int>(e[2]);
+      }
+    }
     UpdateSizes();
   }
   void Store(RemeshTriangles* mesh) {
-    m.Compact();
+    std::vector<Index> old_to_new;
+    m.Compact(&old_to_new);
     m.Export(&mesh->positions, &mesh->triangles);
     mesh->loop = m.loop;
+    if (!cr_ || mesh->feature.empty()) return;
+    mesh->feature = m.feature;
+    mesh->crease_edges.clear();
+    for (const auto& e : crease_) {
+      const Index a = old_to_new[static_cast<std::size_t>(e.first.first)];
+      const Index b = old_to_new[static_cast<std::size_t>(e.first.second)];
+      mesh->crease_edges.push_back({static_cast<std::uint32_t>(std::min(a, b)),
+                                    static_cast<std::uint32_t>(std::max(a, b)),
+                                    static_cast<std::uint32_t>(e.second)});
+    }
+    std::sort(mesh->crease_edges.begin(), mesh->crease_edges.end());
   }
 
  private:
   const ReferenceSurface& ref_;
+  const CreaseChains* cr_;
+  std::map<std::pair<Index, Index>, int> crease_;
   const SizingField& sizing_;
   IsotropicRemeshOptions options_;
   IsotropicRemeshStats* stats_;
@@ -454,10 +578,10 @@ Status CheckMesh(const RemeshTriangles& mesh) {
 
 Status RemeshIsotropic(const ReferenceSurface& reference, const SizingField& sizing,
                        const IsotropicRemeshOptions& options, RemeshTriangles* mesh,
-                       IsotropicRemeshStats* stats) {
+                       IsotropicRemeshStats* stats, const CreaseChains* creases) {
   Status s = CheckMesh(*mesh);
   if (!s.ok()) return s;
-  Remesher r(reference, sizing, options, stats);
+  Remesher r(reference, sizing, options, stats, creases);
   r.Load(*mesh);
   for (int it = 0; it < options.iterations; ++it) {
     r.SplitLongEdges();
@@ -472,9 +596,10 @@ Status RemeshIsotropic(const ReferenceSurface& reference, const SizingField& siz
 }
 
 int AdjustVertexCount(const ReferenceSurface& reference, const SizingField& sizing, int delta,
-                      const IsotropicRemeshOptions& options, RemeshTriangles* mesh) {
+                      const IsotropicRemeshOptions& options, RemeshTriangles* mesh,
+                      const CreaseChains* creases) {
   if (delta == 0 || !CheckMesh(*mesh).ok()) return 0;
-  Remesher r(reference, sizing, options, nullptr);
+  Remesher r(reference, sizing, options, nullptr, creases);
   r.Load(*mesh);
   int done = 0;
   std::vector<std::array<Index, 2>> edges;

@@ -44,7 +44,8 @@ double QuadQuality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 Status PairTrianglesIntoQuads(const std::vector<Vec3>& positions,
                               const std::vector<std::uint32_t>& triangles,
                               const QuadPairingOptions& options, PolygonMesh* out,
-                              QuadPairingStats* stats) {
+                              QuadPairingStats* stats,
+                              const std::vector<std::array<std::uint32_t, 2>>* keep_edges) {
   if (triangles.empty() || triangles.size() % 3 != 0) {
     return Status::InvalidInput("quad pairing: no triangles");
   }
@@ -97,6 +98,11 @@ Status PairTrianglesIntoQuads(const std::vector<Vec3>& positions,
       const std::int64_t u = across(a, b);
       if (u <= static_cast<std::int64_t>(t)) continue;  // boundary, or seen from the other side
       if (interior3(a) || interior3(b)) continue;
+      if (keep_edges &&
+          std::binary_search(keep_edges->begin(), keep_edges->end(),
+                             std::array<std::uint32_t, 2>{std::min(a, b), std::max(a, b)})) {
+        continue;  // a crease stays an edge
+      }
       const std::size_t s = static_cast<std::size_t>(u);
       std::uint32_t d = 0;
       for (int j = 0; j < 3; ++j) {

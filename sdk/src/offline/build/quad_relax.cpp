@@ -54,10 +54,26 @@ Vec3 FaceCentroid(const PolygonMesh& m, Index f) {
 
 Status RelaxQuadMesh(const ReferenceSurface& reference, const SizingField& sizing,
                      const std::vector<int>& loop, const QuadRelaxOptions& options,
-                     PolygonMesh* mesh, int* rejected) {
+                     PolygonMesh* mesh, int* rejected, const QuadRelaxFeatures* features) {
   PolygonMesh& m = *mesh;
   const std::size_t nv = m.positions.size();
   if (loop.size() != nv) return Status::InvalidInput("quad relaxation: loop ids do not match");
+  if (features &&
+      (!features->chains || features->feature.size() != nv || features->neighbors.size() != nv)) {
+    return Status::InvalidInput("quad relaxation: feature tags do not match");
+  }
+  auto feature = [&](std::size_t v) { return features ? features->feature[v] : kNoFeature; };
+  // Where crease vertex v goes along its chain (t < 0: in proportion to the sizes).
+  auto crease_target = [&](std::size_t v, const std::vector<double>& sz, double t) {
+    const std::array<Index, 2>& q = features->neighbors[v];
+    if (q[0] == kInvalidIndex || q[1] == kInvalidIndex) return m.positions[v];
+    const std::size_t a = static_cast<std::size_t>(q[0]), c = static_cast<std::size_t>(q[1]);
+    if (t < 0.0) {
+      const double hp = 0.5 * (sz[a] + sz[v]), hn = 0.5 * (sz[v] + sz[c]);
+      t = hp / (hp + hn);
+    }
+    return features->chains->Between(feature(v), m.positions[a], m.positions[c], t);
+  };
   const double cos_max = std::cos(options.max_normal_change_deg * 3.14159265358979323846 / 180.0);
   std::vector<std::vector<Index>> faces_of(nv);
   std::vector<std::array<Index, 3>> directed;  // (a, b, face)
@@ -105,7 +121,11 @@ Status RelaxQuadMesh(const ReferenceSurface& reference, const SizingField& sizin
     for (std::size_t v = 0; v < nv; ++v) {
       const Vec3 p = m.positions[v];
       target[v] = p;
-      if (faces_of[v].empty()) continue;
+      if (faces_of[v].empty() || feature(v) == kCornerFeature) continue;
+      if (feature(v) >= 0) {
+        target[v] = crease_target(v, size, -1.0);
+        continue;
+      }
       if (next[v] != kInvalidIndex) {
         if (prev[v] == kInvalidIndex || loop[v] < 0) continue;
         const std::size_t a = static_cast<std::size_t>(prev[v]),
@@ -216,7 +236,11 @@ Status RelaxQuadMesh(const ReferenceSurface& reference, const SizingField& sizin
       return bad;
     };
     for (std::size_t v = 0; v < nv; ++v) {
-      if (!marked[v]) continue;
+      if (!marked[v] || feature(v) == kCornerFeature) continue;
+      if (feature(v) >= 0) {
+        m.positions[v] = crease_target(v, size, 0.5);
+        continue;
+      }
       // Candidates: the mean of the edge neighbours (or half way along the loop for a boundary
       // vertex), and for every face where v's corner is reflex the point that makes that face a
       // parallelogram; each projected back. The one leaving fewest non-convex faces wins (the

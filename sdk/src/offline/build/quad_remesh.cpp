@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "dermis/core/mesh_topology.h"
+#include "dermis/offline/build/crease_chains.h"
 #include "dermis/offline/build/reference_surface.h"
 #include "dermis/offline/geometry/quadrangulate.h"
 #include "dermis/offline/geometry/triangle_distance.h"
@@ -43,7 +44,7 @@ int SplitCount(const PolygonMesh& poly) {
 // The seed: the input simplified to about `target` triangles with its borders locked, compacted
 // in first-use order; empty if it does not keep the input's components and loops.
 bool MakeSeed(const ReferenceSurface& ref, const std::vector<std::uint32_t>& triangles,
-              std::size_t target, RemeshTriangles* seed) {
+              std::size_t target, RemeshTriangles* seed, std::vector<Index>* seed_of = nullptr) {
   const std::vector<Vec3>& x = ref.positions();
   std::vector<std::uint32_t> simplified = triangles;
   if (target < triangles.size() / 3) {
@@ -77,7 +78,38 @@ bool MakeSeed(const ReferenceSurface& ref, const std::vector<std::uint32_t>& tri
     return false;
   }
   *seed = std::move(s);
+  if (seed_of) *seed_of = std::move(map);
   return true;
+}
+
+// Tags the seed (the input renumbered by `seed_of`) with the creases: each vertex's feature and
+// the crease edges.
+void TagCreases(const CreaseChains& creases, const std::vector<Index>& seed_of,
+                RemeshTriangles* seed) {
+  seed->feature.assign(seed->positions.size(), kNoFeature);
+  for (std::size_t v = 0; v < seed_of.size(); ++v) {
+    if (seed_of[v] != kInvalidIndex) {
+      seed->feature[static_cast<std::size_t>(seed_of[v])] =
+          creases.vertex_feature(static_cast<Index>(v));
+    }
+  }
+  seed->crease_edges.clear();
+  for (std::size_t e = 0; e < creases.edges().size(); ++e) {
+    const Index a = seed_of[creases.edges()[e][0]], b = seed_of[creases.edges()[e][1]];
+    if (a == kInvalidIndex || b == kInvalidIndex) continue;
+    seed->crease_edges.push_back({static_cast<std::uint32_t>(std::min(a, b)),
+                                  static_cast<std::uint32_t>(std::max(a, b)),
+                                  static_cast<std::uint32_t>(creases.edge_chain()[e])});
+  }
+  std::sort(seed->crease_edges.begin(), seed->crease_edges.end());
+}
+
+// The crease edges as sorted (a, b) pairs.
+std::vector<std::array<std::uint32_t, 2>> KeepEdges(const RemeshTriangles& mesh) {
+  std::vector<std::array<std::uint32_t, 2>> keep;
+  for (const auto& e : mesh.crease_edges) keep.push_back({e[0], e[1]});
+  std::sort(keep.begin(), keep.end());
+  return keep;
 }
 
 // Two-sided distance between the input and a triangle mesh on it, relative to the local
@@ -107,6 +139,41 @@ double Deviation(const ReferenceSurface& ref, const SizingField& sizing,
     }
   }
   return d;
+}
+
+// The crease part of the report: control edges on creases, and the input's crease edges kept
+// (midpoint within a quarter of the local target edge length of a control crease edge).
+void MeasureCreases(const CreaseChains& creases, const SizingField& sizing,
+                    const PolygonMesh& quads, const QuadRelaxFeatures& features,
+                    QuadRemeshReport* rep) {
+  std::vector<std::array<Vec3, 2>> segments;
+  for (std::size_t v = 0; v < features.neighbors.size(); ++v) {
+    if (features.feature[v] < 0) continue;
+    for (Index w : features.neighbors[v]) {
+      if (w == kInvalidIndex) continue;
+      // Each edge once: from its lower end, or from the crease vertex when the other end is a
+      // corner (which has no neighbour list).
+      if (features.feature[static_cast<std::size_t>(w)] >= 0 && static_cast<std::size_t>(w) < v) {
+        continue;
+      }
+      segments.push_back({quads.positions[v], quads.positions[static_cast<std::size_t>(w)]});
+    }
+  }
+  rep->control_crease_edges = static_cast<int>(segments.size());
+  int kept = 0;
+  const std::vector<Vec3>& x = creases.reference_positions();
+  for (const auto& e : creases.edges()) {
+    const Vec3 p = 0.5 * (x[e[0]] + x[e[1]]);
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& sg : segments) {
+      const Vec3 d = sg[1] - sg[0];
+      const double dd = glm::dot(d, d);
+      const double u = dd > 0.0 ? std::clamp(glm::dot(p - sg[0], d) / dd, 0.0, 1.0) : 0.0;
+      best = std::min(best, glm::length(p - (sg[0] + u * d)));
+    }
+    kept += best <= 0.25 * sizing.At(p, Vec3(0.0)) ? 1 : 0;
+  }
+  rep->crease_edges_kept = kept;
 }
 
 }  // namespace
@@ -211,9 +278,17 @@ Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uin
                             static_cast<std::size_t>(2.0 * options.seed_factor * v_first *
                                                      (options.max_deviation > 0.0 ? 2.0 : 1.0)));
   RemeshTriangles seed;
+  CreaseChains creases;
+  creases.Build(ref, options.crease_angle_deg, options.corner_turn_deg);
+  const CreaseChains* cr = creases.empty() ? nullptr : &creases;
+  rep.crease_edges = static_cast<int>(creases.edges().size());
+  rep.crease_chains = creases.num_chains();
+  rep.crease_closed_chains = creases.num_closed();
+  if (cr) seed_target = nt;  // every crease edge starts as an edge
+  std::vector<Index> seed_of;
   for (;;) {
     if (seed_target >= nt) {
-      if (!MakeSeed(ref, triangles, nt, &seed)) {
+      if (!MakeSeed(ref, triangles, nt, &seed, &seed_of)) {
         return Status::Internal(name + ": the input is not a usable seed for remeshing");
       }
       break;
@@ -221,6 +296,7 @@ Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uin
     if (MakeSeed(ref, triangles, seed_target, &seed)) break;
     seed_target *= 2;
   }
+  if (cr) TagCreases(creases, seed_of, &seed);
   rep.seed_vertices = static_cast<int>(seed.positions.size());
   std::vector<double> loop_length(seed.positions.size(), 0.0);
   for (std::size_t i = 0; i < loop_length.size(); ++i) {
@@ -245,15 +321,16 @@ Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uin
     if (!s.ok()) return s.WithContext(name);
     sizing.SetScaleForVertices(v_tri);
     mesh = seed;
-    s = RemeshIsotropic(ref, sizing, options.isotropic, &mesh);
+    s = RemeshIsotropic(ref, sizing, options.isotropic, &mesh, nullptr, cr);
     if (!s.ok()) return s.WithContext(name);
     const int tolerance = std::max(4, static_cast<int>(std::lround(options.tolerance * goal)));
     IsotropicRemeshOptions again = options.isotropic;
     again.iterations = std::max(2, options.isotropic.iterations / 2);
     const int goal_cap = options.max_deviation > 0.0 ? INT_MAX : cap;
     for (int round = 0;; ++round) {
-      s = PairTrianglesIntoQuads(mesh.positions, mesh.triangles, options.pairing, &paired,
-                                 &pairing);
+      const std::vector<std::array<std::uint32_t, 2>> keep = KeepEdges(mesh);
+      s = PairTrianglesIntoQuads(mesh.positions, mesh.triangles, options.pairing, &paired, &pairing,
+                                 cr ? &keep : nullptr);
       if (!s.ok()) return s.WithContext(name);
       const int count = SplitCount(paired);
       if ((std::abs(count - goal) <= tolerance && count <= goal_cap) || round >= 8) break;
@@ -262,14 +339,14 @@ Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uin
         // The count grows by about 4 per triangle-mesh vertex.
         const double wanted = std::max(4.0, vertices + (goal - count) / 4.0);
         sizing.SetScaleForVertices(sizing.PredictedVertices() * wanted / vertices);
-        s = RemeshIsotropic(ref, sizing, again, &mesh);
+        s = RemeshIsotropic(ref, sizing, again, &mesh, nullptr, cr);
         if (!s.ok()) return s.WithContext(name);
       } else if (options.max_deviation > 0.0 && count > goal) {
         break;  // a count needed by the sizing's max_turn is not forced down
       } else {
         int delta = static_cast<int>(std::lround((goal - count) / 4.0));
         if (delta == 0) delta = goal > count && count < goal_cap ? 1 : -1;
-        if (AdjustVertexCount(ref, sizing, delta, options.isotropic, &mesh) == 0) break;
+        if (AdjustVertexCount(ref, sizing, delta, options.isotropic, &mesh, cr) == 0) break;
       }
     }
     if (!(options.max_deviation > 0.0)) break;
@@ -295,6 +372,20 @@ Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uin
     std::vector<int> loop(quads.positions.size(), -1);
     for (Index v = 0; v < nv; ++v)
       loop[static_cast<std::size_t>(v)] = mesh.loop[static_cast<std::size_t>(v)];
+    // Creases: a crease edge (a, b) becomes (a, m), (m, b) with m on its chain.
+    QuadRelaxFeatures features;
+    if (cr) {
+      features.chains = cr;
+      features.feature.assign(quads.positions.size(), kNoFeature);
+      features.neighbors.assign(quads.positions.size(), {kInvalidIndex, kInvalidIndex});
+      for (Index v = 0; v < nv; ++v) {
+        features.feature[static_cast<std::size_t>(v)] = mesh.feature[static_cast<std::size_t>(v)];
+      }
+    }
+    auto add_crease_neighbor = [&](Index v, Index w) {
+      std::array<Index, 2>& q = features.neighbors[static_cast<std::size_t>(v)];
+      (q[0] == kInvalidIndex ? q[0] : q[1]) = w;
+    };
     std::vector<Vec3> face_normal(static_cast<std::size_t>(nf), Vec3(0.0));
     for (Index f = 0; f < nf; ++f) {
       const Index b = paired.face_offsets[static_cast<std::size_t>(f)], sz = paired.face_size(f);
@@ -322,6 +413,27 @@ Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uin
                             paired.positions[static_cast<std::size_t>(b)], 0.5);
         continue;
       }
+      if (cr) {
+        const std::array<std::uint32_t, 2> key{static_cast<std::uint32_t>(std::min(a, b)),
+                                               static_cast<std::uint32_t>(std::max(a, b))};
+        const auto it = std::lower_bound(
+            mesh.crease_edges.begin(), mesh.crease_edges.end(), key,
+            [](const std::array<std::uint32_t, 3>& x, const std::array<std::uint32_t, 2>& k) {
+              return x[0] < k[0] || (x[0] == k[0] && x[1] < k[1]);
+            });
+        if (it != mesh.crease_edges.end() && (*it)[0] == key[0] && (*it)[1] == key[1]) {
+          const int chain = static_cast<int>((*it)[2]);
+          p = cr->Between(chain, paired.positions[static_cast<std::size_t>(a)],
+                          paired.positions[static_cast<std::size_t>(b)], 0.5);
+          const Index mid = static_cast<Index>(v);
+          features.feature[v] = chain;
+          features.neighbors[v] = {a, b};
+          for (Index end : {a, b}) {
+            if (features.feature[static_cast<std::size_t>(end)] >= 0) add_crease_neighbor(end, mid);
+          }
+          continue;
+        }
+      }
       const Vec3 n = face_normal[static_cast<std::size_t>(topo.halfedge_face(h))] +
                      face_normal[static_cast<std::size_t>(topo.halfedge_face(topo.twin(h)))];
       p = ref.Project(p, n, sizing.At(p, n)).point;
@@ -333,13 +445,15 @@ Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uin
       const Index* f = quads.quads.data() + 4 * q;
       result.AddFace({f[0], f[1], f[2], f[3]});
     }
-    s = RelaxQuadMesh(ref, sizing, loop, options.relax, &result, &rep.relax_rejected);
+    s = RelaxQuadMesh(ref, sizing, loop, options.relax, &result, &rep.relax_rejected,
+                      cr ? &features : nullptr);
     if (!s.ok()) return s.WithContext(name);
     // The result must be a valid control mesh with the input's components and loops.
     s = ValidatePolygonMesh(result);
     if (!s.ok()) return Status::Internal(name + ": the quad remesh is invalid: " + s.message());
     const int components = rep.components, loops = rep.boundary_loops;
     MeasureQuadMesh(result, &rep);
+    if (cr) MeasureCreases(creases, sizing, result, features, &rep);
     if (rep.components != components || rep.boundary_loops != loops) {
       return Status::Internal(name + ": the quad remesh has " + std::to_string(rep.components) +
                               " components and " + std::to_string(rep.boundary_loops) +

@@ -46,6 +46,7 @@ void TriEditMesh::Init(std::vector<Vec3> positions, const std::vector<std::uint3
   }
   loop.assign(nv, -1);
   size.assign(nv, 0.0);
+  feature.assign(nv, -1);
 }
 
 Index TriEditMesh::DirectedEdgeFace(Index a, Index b) const {
@@ -153,6 +154,7 @@ Index TriEditMesh::SplitEdge(Index a, Index b, const Vec3& p) {
   ++live_vertices_;
   loop.push_back(boundary ? loop[static_cast<std::size_t>(a)] : -1);
   size.push_back(0.5 * (size[static_cast<std::size_t>(a)] + size[static_cast<std::size_t>(b)]));
+  feature.push_back(-1);
   auto split = [&](Index f, Index x, Index y) {  // f holds x -> y
     if (f == kInvalidIndex) return;
     const Index c = Opposite(f, x, y);
@@ -255,10 +257,11 @@ void TriEditMesh::Compact(std::vector<Index>* old_to_new) {
   std::vector<Vec3> pos(static_cast<std::size_t>(n));
   std::vector<int> lp(static_cast<std::size_t>(n));
   std::vector<double> sz(static_cast<std::size_t>(n));
+  std::vector<int> ft(static_cast<std::size_t>(n));
   for (std::size_t v = 0; v < position_.size(); ++v) {
     if (map[v] == kInvalidIndex) continue;
     const std::size_t w = static_cast<std::size_t>(map[v]);
-    pos[w] = position_[v], lp[w] = loop[v], sz[w] = size[v];
+    pos[w] = position_[v], lp[w] = loop[v], sz[w] = size[v], ft[w] = feature[v];
   }
   std::vector<std::uint32_t> tris;
   for (std::size_t f = 0; f < face_.size(); ++f) {
@@ -269,6 +272,7 @@ void TriEditMesh::Compact(std::vector<Index>* old_to_new) {
   Init(std::move(pos), tris);
   loop = std::move(lp);
   size = std::move(sz);
+  feature = std::move(ft);
   if (old_to_new) *old_to_new = std::move(map);
 }
 

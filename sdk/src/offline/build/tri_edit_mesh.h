@@ -40,6 +40,9 @@ class TriEditMesh {
   /// belongs to (-1 inside) and its target edge length.
   std::vector<int> loop;
   std::vector<double> size;
+  /// Feature tag of each vertex (crease_chains.h: kNoFeature, a chain, kCornerFeature); a vertex
+  /// made by SplitEdge() gets kNoFeature (the caller tags it).
+  std::vector<int> feature;
 
   /// The face holding the directed edge a -> b, or kInvalidIndex.
   Index DirectedEdgeFace(Index a, Index b) const;

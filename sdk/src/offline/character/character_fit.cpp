@@ -279,6 +279,9 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
   // mesh follows the component within max_deviation of its diagonal.
   fo.remesh.max_deviation = options.max_deviation;
   fo.remesh.sizing.max_turn = options.max_turn;
+  if (options.remesh_creases) {
+    fo.remesh.crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
+  }
   fo.clamp_control_vertices = true;
   FitInput input;
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
@@ -521,7 +524,13 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
                     : "its remesh cannot be coarser: every edge of the remeshed triangle "
                       "mesh may turn the surface normal by at most " +
                           std::string(turn) +
-                          " radians, and each of its triangles becomes 3 or 4 quads");
+                          " radians, and each of its triangles becomes 3 or 4 quads") +
+               (q.crease_edges > 0
+                    ? "; its " + std::to_string(q.crease_chains) +
+                          " crease chains keep their corners and follow the "
+                          "creases (" +
+                          std::to_string(q.control_crease_edges) + " control edges on them)"
+                    : std::string());
         if (!fr.control_mesh.fallback.empty()) {
           note = "part " + std::to_string(ch.parts.size()) + " (" + stage + ") has " +
                  std::to_string(fr.control_vertices) + " control vertices for " +

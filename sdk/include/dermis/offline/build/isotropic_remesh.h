@@ -5,11 +5,13 @@
 /// (docs/fitting.md, "Control mesh").
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "dermis/core/status.h"
 #include "dermis/core/types.h"
+#include "dermis/offline/build/crease_chains.h"
 #include "dermis/offline/build/reference_surface.h"
 #include "dermis/offline/build/sizing_field.h"
 
@@ -17,11 +19,14 @@ namespace dermis {
 
 /// A triangle mesh being remeshed: positions (model units), counter-clockwise triangles, and
 /// for each vertex the reference boundary loop it lies on (-1 inside). Manifold and
-/// consistently oriented.
+/// consistently oriented. With creases (crease_chains.h): each vertex's feature tag (empty: none)
+/// and the crease edges (a, b, chain), a < b.
 struct RemeshTriangles {
   std::vector<Vec3> positions;
   std::vector<std::uint32_t> triangles;
   std::vector<int> loop;
+  std::vector<int> feature;
+  std::vector<std::array<std::uint32_t, 3>> crease_edges;
 };
 
 /// Options of RemeshIsotropic().
@@ -41,6 +46,10 @@ struct IsotropicRemeshOptions {
   double max_relax_error = 0.05;
   /// A collapse may not make a triangle with a smaller angle (degrees), unless one was there.
   double min_angle_deg = 10.0;
+  /// A crease edge may cut its chain by at most this fraction of the local size (chord
+  /// deviation, CreaseChains::ChordDeviation()): longer ones are split, collapses that would
+  /// exceed it are refused, so a curved crease (a cap's rim) keeps a polygon close to it.
+  double crease_chord_error = 0.12;
 };
 
 /// What RemeshIsotropic() did.
@@ -54,16 +63,21 @@ struct IsotropicRemeshStats {
 /// flips, and vertices spread evenly (tangential area-weighted relaxation); every moved or new
 /// vertex is projected back onto `reference` (boundary vertices onto their own loop). The mesh
 /// stays manifold, keeps its boundary loops (each with at least 3 vertices) and its components
-/// (each closed one with at least 4 vertices). Deterministic.
+/// (each closed one with at least 4 vertices). With `creases` (not owned, the chains of
+/// `reference`) and a tagged mesh, crease edges are kept like boundaries: split and collapsed
+/// only along their chain, their vertices relaxed along it, corners fixed, never flipped.
+/// Deterministic.
 Status RemeshIsotropic(const ReferenceSurface& reference, const SizingField& sizing,
                        const IsotropicRemeshOptions& options, RemeshTriangles* mesh,
-                       IsotropicRemeshStats* stats = nullptr);
+                       IsotropicRemeshStats* stats = nullptr,
+                       const CreaseChains* creases = nullptr);
 
 /// Changes the vertex count of `mesh` by about `delta` (positive: split the edges longest
 /// relative to their size; negative: collapse the shortest), one operation at a time with the
 /// same checks and projections as RemeshIsotropic(), then relaxes twice. Returns the change
 /// achieved.
 int AdjustVertexCount(const ReferenceSurface& reference, const SizingField& sizing, int delta,
-                      const IsotropicRemeshOptions& options, RemeshTriangles* mesh);
+                      const IsotropicRemeshOptions& options, RemeshTriangles* mesh,
+                      const CreaseChains* creases = nullptr);
 
 }  // namespace dermis

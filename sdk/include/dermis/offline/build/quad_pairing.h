@@ -4,6 +4,7 @@
 /// (Blossom-Quad, Remacle et al. 2012; docs/fitting.md, "Control mesh").
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -39,10 +40,11 @@ double QuadQuality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 /// maximum weight matching of the dual graph (LEMON's MaxWeightedMatching, Edmonds' blossom
 /// algorithm, integer weights so the result is exact and deterministic). `out` receives the
 /// same positions, one quad per pair (in the order of its lower triangle) and every unpaired
-/// triangle, with its orientation. Fails on malformed input.
-Status PairTrianglesIntoQuads(const std::vector<Vec3>& positions,
-                              const std::vector<std::uint32_t>& triangles,
-                              const QuadPairingOptions& options, PolygonMesh* out,
-                              QuadPairingStats* stats = nullptr);
+/// triangle, with its orientation. `keep_edges` (optional; (a, b) with a < b, sorted): edges
+/// that stay edges (creases), never the diagonal of a pair. Fails on malformed input.
+Status PairTrianglesIntoQuads(
+    const std::vector<Vec3>& positions, const std::vector<std::uint32_t>& triangles,
+    const QuadPairingOptions& options, PolygonMesh* out, QuadPairingStats* stats = nullptr,
+    const std::vector<std::array<std::uint32_t, 2>>* keep_edges = nullptr);
 
 }  // namespace dermis

@@ -44,6 +44,12 @@ struct QuadRemeshOptions {
   /// vertex count, at least min_seed_triangles triangles (never more than the input).
   double seed_factor = 6.0;
   int min_seed_triangles = 2000;
+  /// Creases (crease_chains.h): interior edges whose dihedral angle is at least this (degrees;
+  /// 0: none) are kept as control edges the way boundaries are (docs/fitting.md, "Creases").
+  /// The seed is then the input itself, so every crease edge starts as an edge.
+  double crease_angle_deg = 0.0;
+  /// A crease vertex where its chain turns by more than this (degrees) is a fixed corner.
+  double corner_turn_deg = 80.0;
 };
 
 /// Quality of a quad remesh (written to the fit report).
@@ -68,6 +74,13 @@ struct QuadRemeshReport {
   /// (in local target edge lengths) there.
   int grown_target = 0;
   double deviation = 0.0;
+  /// Creases of the input (crease_angle_deg > 0): its crease edges and chains (closed ones
+  /// among them), the input's crease edges that the control mesh keeps (each one's midpoint
+  /// within a quarter of the local target edge length of a control crease edge), and the
+  /// control edges on creases.
+  int crease_edges = 0, crease_chains = 0, crease_closed_chains = 0;
+  int crease_edges_kept = 0;
+  int control_crease_edges = 0;
 };
 
 /// Remeshes a dense triangle mesh (welded positions, counter-clockwise triangles without

@@ -1,0 +1,280 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Feature-aware remeshing (docs/fitting.md, "Creases"): the crease chains of a reference
+// surface, pairing that never uses a crease as a diagonal, and quad remeshes of a capped
+// cylinder and a box whose crease edges must come out as control edges on the crease.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <vector>
+
+#include "dermis/offline/build/crease_chains.h"
+#include "dermis/offline/build/quad_pairing.h"
+#include "dermis/offline/build/quad_remesh.h"
+#include "dermis/offline/build/reference_surface.h"
+
+using namespace dermis;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct TriMesh {
+  std::vector<Vec3> x;
+  std::vector<std::uint32_t> t;
+  void Quad(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+    t.insert(t.end(), {a, b, c, a, c, d});
+  }
+};
+
+// A cylinder of radius 1 and height 2 around z, `around` segments and `rows` rows on the side,
+// capped by fans: its rims (90 degree dihedral) are two closed creases of `around` edges.
+TriMesh CappedCylinder(int around, int rows) {
+  TriMesh m;
+  for (int j = 0; j <= rows; ++j) {
+    for (int i = 0; i < around; ++i) {
+      const double a = 2.0 * kPi * i / around;
+      m.x.push_back({std::cos(a), std::sin(a), 2.0 * j / rows});
+    }
+  }
+  auto id = [&](int i, int j) { return static_cast<std::uint32_t>(j * around + (i % around)); };
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < around; ++i) m.Quad(id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+  }
+  const std::uint32_t bottom = static_cast<std::uint32_t>(m.x.size());
+  m.x.push_back({0.0, 0.0, 0.0});
+  m.x.push_back({0.0, 0.0, 2.0});
+  for (int i = 0; i < around; ++i) {
+    m.t.insert(m.t.end(), {bottom, id(i + 1, 0), id(i, 0)});
+    m.t.insert(m.t.end(), {bottom + 1, id(i, rows), id(i + 1, rows)});
+  }
+  return m;
+}
+
+// The cube [0, 1]^3 with an n x n grid of quads (two triangles each) on every face, outward.
+TriMesh GridCube(int n) {
+  TriMesh m;
+  std::vector<std::uint32_t> ids;
+  auto vertex = [&](const Vec3& p) {
+    for (std::size_t i = 0; i < m.x.size(); ++i) {
+      if (glm::length(m.x[i] - p) < 1e-12) return static_cast<std::uint32_t>(i);
+    }
+    m.x.push_back(p);
+    return static_cast<std::uint32_t>(m.x.size() - 1);
+  };
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      auto at = [&](int i, int j) {
+        Vec3 p(0.0);
+        p[axis] = side;
+        p[u] = static_cast<double>(i) / n;
+        p[w] = static_cast<double>(j) / n;
+        return vertex(p);
+      };
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          // (u, w, axis) is right-handed: counter-clockwise in (u, w) faces +axis.
+          if (side == 1) {
+            m.Quad(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+          } else {
+            m.Quad(at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+          }
+        }
+      }
+    }
+  }
+  return m;
+}
+
+// Edges of a polygon mesh, each once as (a, b), a < b.
+std::vector<std::array<Index, 2>> Edges(const PolygonMesh& m) {
+  std::vector<std::array<Index, 2>> e;
+  for (Index f = 0; f < m.num_faces(); ++f) {
+    const Index b = m.face_offsets[static_cast<std::size_t>(f)], s = m.face_size(f);
+    for (Index k = 0; k < s; ++k) {
+      const Index p = m.face_vertices[static_cast<std::size_t>(b + k)];
+      const Index q = m.face_vertices[static_cast<std::size_t>(b + (k + 1) % s)];
+      e.push_back({std::min(p, q), std::max(p, q)});
+    }
+  }
+  std::sort(e.begin(), e.end());
+  e.erase(std::unique(e.begin(), e.end()), e.end());
+  return e;
+}
+
+// Distance from p to the closed polygon of `around` vertices on the unit circle at height z.
+double PolygonDistance(const Vec3& p, int around, double z) {
+  double best = 1e300;
+  for (int i = 0; i < around; ++i) {
+    const double a0 = 2.0 * kPi * i / around, a1 = 2.0 * kPi * (i + 1) / around;
+    const Vec3 a(std::cos(a0), std::sin(a0), z), b(std::cos(a1), std::sin(a1), z);
+    const double u = std::clamp(glm::dot(p - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
+    best = std::min(best, glm::length(p - (a + u * (b - a))));
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("creases: chains of a capped cylinder and of a box") {
+  {
+    const TriMesh m = CappedCylinder(32, 4);
+    ReferenceSurface ref;
+    REQUIRE(ref.Build(m.x, m.t, "cylinder").ok());
+    CreaseChains c;
+    c.Build(ref, 30.0, 50.0);
+    // Side edges turn by 360/32 = 11.25 degrees, caps are flat: only the rims are creases.
+    CHECK(c.edges().size() == 64);
+    REQUIRE(c.num_chains() == 2);
+    CHECK(c.num_closed() == 2);
+    for (int k = 0; k < 2; ++k) {
+      CHECK(c.chain(k).size() == 32);
+      CHECK(c.length(k) == Approx(64.0 * std::sin(kPi / 32.0)));  // the 32-gon's perimeter
+      // Half way between two rim points, the short way round, is on the polygon.
+      const double z = c.chain(k)[0] < 32 ? 0.0 : 2.0;
+      const Vec3 p = c.Between(k, Vec3(1.0, -0.1, z), Vec3(1.0, 0.1, z), 0.5);
+      CHECK(p.x == Approx(1.0));
+      CHECK(p.y == Approx(0.0).margin(1e-12));
+      CHECK(PolygonDistance(p, 32, z) < 1e-12);
+    }
+    for (Index v = 0; v < 32; ++v) {
+      CHECK(c.vertex_feature(v) >= 0);        // bottom rim
+      CHECK(c.vertex_feature(128 + v) >= 0);  // top rim (4 rows up)
+    }
+    CHECK(c.vertex_feature(32 * 2) == kNoFeature);  // a side vertex
+    CreaseChains none;
+    none.Build(ref, 0.0, 50.0);
+    CHECK(none.empty());
+  }
+  {
+    const TriMesh m = GridCube(3);
+    ReferenceSurface ref;
+    REQUIRE(ref.Build(m.x, m.t, "cube").ok());
+    CreaseChains c;
+    c.Build(ref, 30.0, 50.0);
+    CHECK(c.edges().size() == 12 * 3);  // the cube's 12 edges, 3 grid edges each
+    CHECK(c.num_chains() == 12);        // from corner to corner
+    CHECK(c.num_closed() == 0);
+    int corners = 0;
+    for (Index v = 0; v < static_cast<Index>(m.x.size()); ++v) {
+      corners += c.vertex_feature(v) == kCornerFeature ? 1 : 0;
+    }
+    CHECK(corners == 8);
+    for (int k = 0; k < 12; ++k) CHECK(c.length(k) == Approx(1.0));
+  }
+}
+
+TEST_CASE("creases: pairing never makes a crease the diagonal of a quad") {
+  // A 2 x 2 grid of unit squares, each split along its diagonal (a, c).
+  std::vector<Vec3> x;
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) x.push_back({double(i), double(j), 0.0});
+  }
+  std::vector<std::uint32_t> t;
+  std::vector<std::array<std::uint32_t, 2>> diagonals;
+  for (std::uint32_t j = 0; j < 2; ++j) {
+    for (std::uint32_t i = 0; i < 2; ++i) {
+      const std::uint32_t a = 3 * j + i, b = a + 1, c = a + 4, d = a + 3;
+      t.insert(t.end(), {a, b, c, a, c, d});
+      diagonals.push_back({a, c});
+    }
+  }
+  std::sort(diagonals.begin(), diagonals.end());
+  PolygonMesh free_pairs, kept;
+  QuadPairingStats sf, sk;
+  REQUIRE(PairTrianglesIntoQuads(x, t, QuadPairingOptions{}, &free_pairs, &sf).ok());
+  CHECK(sf.quads == 4);  // the squares back
+  REQUIRE(PairTrianglesIntoQuads(x, t, QuadPairingOptions{}, &kept, &sk, &diagonals).ok());
+  const std::vector<std::array<Index, 2>> e = Edges(kept);
+  for (const auto& d : diagonals) {
+    CHECK(std::binary_search(e.begin(), e.end(), std::array<Index, 2>{Index(d[0]), Index(d[1])}));
+  }
+}
+
+TEST_CASE("creases: a capped cylinder's rims and a box's edges are control edges") {
+  struct Case {
+    const char* name;
+    TriMesh mesh;
+    int target;
+  };
+  const Case cases[] = {{"capped cylinder", CappedCylinder(32, 4), 200},
+                        {"cube", GridCube(6), 150}};
+  for (const Case& cs : cases) {
+    QuadRemeshOptions options;
+    options.target_vertices = cs.target;
+    options.crease_angle_deg = 30.0;
+    PolygonMesh out;
+    QuadRemeshReport r;
+    const Status s = QuadRemesh(cs.mesh.x, cs.mesh.t, cs.name, options, &out, &r);
+    INFO(cs.name << ": " << s.message());
+    REQUIRE(s.ok());
+    REQUIRE(ValidatePolygonMesh(out).ok());
+    CHECK(r.crease_edges_kept == r.crease_edges);
+    CHECK(r.control_crease_edges > 0);
+    const bool cylinder = cs.name[0] == 'c' && cs.name[1] == 'a';
+    // On-crease test, independent of the remesher's tags: a cylinder vertex on a rim plane at
+    // radius > 0.9, or a cube vertex on two faces' planes.
+    auto on_crease = [&](const Vec3& p) {
+      if (cylinder) {
+        const bool plane = std::abs(p.z) < 1e-9 || std::abs(p.z - 2.0) < 1e-9;
+        return plane && std::hypot(p.x, p.y) > 0.9;
+      }
+      int planes = 0;
+      for (int k = 0; k < 3; ++k) {
+        planes += (std::abs(p[k]) < 1e-9 || std::abs(p[k] - 1.0) < 1e-9) ? 1 : 0;
+      }
+      return planes >= 2;
+    };
+    // Crease vertices lie on the crease polyline.
+    int on = 0;
+    for (const Vec3& p : out.positions) {
+      if (!on_crease(p)) continue;
+      ++on;
+      if (cylinder) {
+        CHECK(PolygonDistance(p, 32, p.z < 1.0 ? 0.0 : 2.0) < 1e-9);
+      }
+    }
+    // The control edges along the creases cover them: their lengths add up to the rims'
+    // polygons (or the cube's 12 edges), and there are as many as there are crease vertices
+    // on closed rims (one more per chain on the cube's 12 open edges, corners shared).
+    int crease_edges = 0;
+    double length = 0.0;
+    for (const auto& e : Edges(out)) {
+      const Vec3& a = out.positions[static_cast<std::size_t>(e[0])];
+      const Vec3& b = out.positions[static_cast<std::size_t>(e[1])];
+      if (!on_crease(a) || !on_crease(b)) continue;
+      if (cylinder && std::abs(a.z - b.z) > 1e-9) continue;
+      if (!cylinder) {
+        // Both ends on the same cube edge: they share two coordinates in {0, 1}.
+        int shared = 0;
+        for (int k = 0; k < 3; ++k) {
+          shared += (std::abs(a[k] - b[k]) < 1e-9 &&
+                     (std::abs(a[k]) < 1e-9 || std::abs(a[k] - 1.0) < 1e-9))
+                        ? 1
+                        : 0;
+        }
+        if (shared < 2) continue;
+      }
+      ++crease_edges;
+      length += glm::length(a - b);
+    }
+    INFO(on << " crease vertices, " << crease_edges << " control edges on creases, length "
+            << length << "; report: " << r.control_crease_edges << " of " << r.vertices);
+    CHECK(crease_edges == r.control_crease_edges);
+    if (cylinder) {
+      CHECK(crease_edges == on);
+      // Chords of the 32-gon: at most its perimeter, within 2 % of it.
+      const double perimeter = 64.0 * std::sin(kPi / 32.0);
+      CHECK(length <= 2.0 * perimeter + 1e-9);
+      CHECK(length > 0.98 * 2.0 * perimeter);
+      CHECK(crease_edges >= 2 * 12);  // enough edges that each rim stays round
+    } else {
+      CHECK(crease_edges == on + 4);  // 12 chains, 8 shared corners: E = V + 12 - 8
+      CHECK(length == Approx(12.0));
+      for (const Vec3& corner : {Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(1, 0, 0), Vec3(0, 1, 1)}) {
+        bool found = false;
+        for (const Vec3& p : out.positions) found |= glm::length(p - corner) < 1e-12;
+        CHECK(found);
+      }
+    }
+  }
+}
