@@ -678,8 +678,11 @@ Status SweepDeformer::SetPose(const glm::dmat4* m) {
       const double disc = qb * qb - qa * qc;
       if (qa > 0.0 && disc >= 0.0) c.k[j] = (-qb + std::sqrt(disc)) / qa;
       // Bounded: near a full fold the arc compresses the zone to nothing and k would balloon a
-      // slender limb; a bind bent more than the pose would shrink sections through zero.
-      c.k[j] = std::clamp(c.k[j], -0.5, 1.0);
+      // slender limb. Never below 0: a joint straighter than its rest bend (an A-pose elbow
+      // straightened, a paw bent at rest) lengthens a centred tube's zone, but the real skin
+      // around a rest-bent joint does not gain that volume (its bones run off the sections'
+      // centroids; docs/deformation.md "Volume"), so shrinking its sections only loses volume.
+      c.k[j] = std::clamp(c.k[j], 0.0, 1.0);
     }
   }
   history_ = true;
