@@ -14,7 +14,8 @@
 //   against the transported frame, unwrapped along the chain and against the previous pose, so
 //   twists past 180 degrees do not flip;
 // - scale sigma (1.5): a sin^2 bump of half-width W around each bent joint, its height solved in
-//   closed form per frame so that the swept volume of the zone (Pappus) equals the rest one;
+//   closed form per frame so that the swept volume of the zone (Pappus) equals the rest one,
+//   never below 0 (a joint straighter than its rest bend is not thinned);
 // - folds (1.6): vertices of the two bones of a bent joint are clamped against its bisector
 //   plane on the inside of the bend.
 // Every joint that carries skin owns a bone (sweep_chains.cpp, docs/deformation.md "Chains"):
