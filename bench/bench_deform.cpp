@@ -801,7 +801,7 @@ void RunCharacter(const std::string& path, int frames) {
       }
       std::printf("    %-18s %6s", "clip", "dur");
       for (const Variant& v : variants)
-        std::printf(" | %-12s %6s %7s", v.label.c_str(), "dvol", "jump");
+        std::printf(" | %-12s %7s %7s", v.label.c_str(), "dvol", "jump");
       std::printf("\n");
       for (std::size_t a = 0; a < asset.animations.size(); ++a) {
         std::string clip = asset.animations[a].name;
@@ -818,7 +818,7 @@ void RunCharacter(const std::string& path, int frames) {
         std::printf("    %-18s %6.2f", clip.c_str(), asset.animations[a].Duration());
         for (std::size_t k = 0; k < variants.size(); ++k) {
           if (!deformers[k]) {
-            std::printf(" | %-12s %14s", variants[k].label.c_str(), "n/a");
+            std::printf(" | %-12s %15s", variants[k].label.c_str(), "n/a");
             continue;
           }
           Deformer& d = *deformers[k];
@@ -845,14 +845,14 @@ void RunCharacter(const std::string& path, int frames) {
           }
           if (!error.empty()) {
             errors[k] = error;
-            std::printf(" | %-12s %14s", variants[k].label.c_str(), "n/a");
+            std::printf(" | %-12s %15s", variants[k].label.c_str(), "n/a");
             continue;
           }
           const double j = diag > 0.0 ? jump / diag : 0.0;
           if (flat) {
-            std::printf(" | %-12s %6s %7.4f", variants[k].label.c_str(), "-", j);
+            std::printf(" | %-12s %7s %7.4f", variants[k].label.c_str(), "-", j);
           } else {
-            std::printf(" | %-12s %6.4f %7.4f", variants[k].label.c_str(), dvol, j);
+            std::printf(" | %-12s %7.5f %7.4f", variants[k].label.c_str(), dvol, j);
           }
         }
         std::printf("\n");

@@ -529,7 +529,7 @@ void RunClips(Fitted* f, const RealRigOptions& o) {
             docc, std::fabs(OccupiedVolume(posed, kClipGrid) / f->rest_occupied_coarse - 1.0));
       }
       if (ok) {
-        std::printf(" | %-6s %6.4f / %6.4f", DeformerName(kKinds[k]), dvol, docc);
+        std::printf(" | %-6s %7.5f / %7.5f", DeformerName(kKinds[k]), dvol, docc);
       } else {
         std::printf(" | %-6s n/a", DeformerName(kKinds[k]));
       }

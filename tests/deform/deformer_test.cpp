@@ -649,6 +649,55 @@ TEST_CASE("sweep: a vertex of two chains blends their frames without collapse") 
   }
 }
 
+TEST_CASE("sweep: the volume fix never shrinks a joint straightened from its rest bend") {
+  // An elbow bent 40 degrees at rest (A-pose): a tube of radius 1 around the bent bones, rings
+  // of 8 every 0.25 of arc length, smoothstep weights over 3 <= s <= 5. Straightened, the
+  // centred-tube model lengthens the zone and would shrink its sections (a negative bump); the
+  // bump is kept at 0 instead, so every vertex is where the sweep without the fix puts it.
+  // Bent further, the fix thickens the joint as for a straight rest limb.
+  const double rest = 40.0 * kPi / 180.0;
+  const Vec3 d(std::cos(rest), std::sin(rest), 0.0), across(-std::sin(rest), std::cos(rest), 0.0);
+  SkinRig rig = Chain3();
+  rig.bind[2] = glm::translate(glm::dmat4(1.0), Vec3(4, 0, 0) + 4.0 * d);
+  std::vector<Vec3> x;
+  std::vector<VertexWeights> w;
+  for (int i = 0; i <= 32; ++i) {
+    const double s = 0.25 * i;
+    for (int k = 0; k < 8; ++k) {
+      const double a = 2.0 * kPi * k / 8;
+      x.push_back(s <= 4.0 ? Vec3(s, std::cos(a), std::sin(a))
+                           : Vec3(4, 0, 0) + (s - 4.0) * d + std::cos(a) * across +
+                                 std::sin(a) * Vec3(0, 0, 1));
+      const double u = std::clamp((s - 3.0) / 2.0, 0.0, 1.0);
+      w.push_back(Two(0, 1, static_cast<float>(u * u * (3 - 2 * u))));
+    }
+  }
+  SweepOptions bare;
+  bare.preserve_volume = false;
+  std::unique_ptr<Deformer> fixed, plain;
+  REQUIRE(
+      MakeSweepDeformer(rig, x.data(), nullptr, w.data(), x.size(), SweepOptions{}, &fixed).ok());
+  REQUIRE(MakeSweepDeformer(rig, x.data(), nullptr, w.data(), x.size(), bare, &plain).ok());
+  std::vector<Vec3> a(x.size()), b(x.size());
+  for (const double turn : {-40.0, -20.0, -5.0, 5.0, 40.0}) {
+    INFO("elbow turned by " << turn << " degrees from its rest bend");
+    const auto palette = BendPalette(turn * kPi / 180.0);
+    REQUIRE(fixed->SetPose(palette.data()).ok());
+    REQUIRE(plain->SetPose(palette.data()).ok());
+    fixed->Deform(0, a.size(), a.data(), nullptr);
+    plain->Deform(0, b.size(), b.data(), nullptr);
+    double moved = 0.0;
+    for (std::size_t v = 0; v < a.size(); ++v) moved = std::max(moved, glm::length(a[v] - b[v]));
+    if (turn < 0.0) {
+      CHECK(moved <= 1e-12);
+    } else {
+      // The ring at the joint, off the bend plane: thicker with the fix.
+      const std::size_t ring = 16 * 8;
+      CHECK(glm::length(a[ring + 2] - a[ring + 6]) > glm::length(b[ring + 2] - b[ring + 6]) + 1e-4);
+    }
+  }
+}
+
 TEST_CASE("sweep chains: a joint too sharp or too short for its skin is cut, not swept") {
   // An elbow bent 120 degrees at rest with bones of 4 and a skin radius of 1.5: the largest
   // blend zone (0.49 * 4) folds at 2 atan(1.96 / 1.5) = 105 degrees < 120: the chain ends at

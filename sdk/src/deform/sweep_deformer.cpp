@@ -14,7 +14,8 @@
 //   against the transported frame, unwrapped along the chain and against the previous pose, so
 //   twists past 180 degrees do not flip;
 // - scale sigma (1.5): a sin^2 bump of half-width W around each bent joint, its height solved in
-//   closed form per frame so that the swept volume of the zone (Pappus) equals the rest one;
+//   closed form per frame so that the swept volume of the zone (Pappus) equals the rest one,
+//   never below 0 (a joint straighter than its rest bend is not thinned);
 // - folds (1.6): vertices of the two bones of a bent joint are clamped against its bisector
 //   plane on the inside of the bend.
 // Every joint that carries skin owns a bone (sweep_chains.cpp, docs/deformation.md "Chains"):
@@ -678,8 +679,11 @@ Status SweepDeformer::SetPose(const glm::dmat4* m) {
       const double disc = qb * qb - qa * qc;
       if (qa > 0.0 && disc >= 0.0) c.k[j] = (-qb + std::sqrt(disc)) / qa;
       // Bounded: near a full fold the arc compresses the zone to nothing and k would balloon a
-      // slender limb; a bind bent more than the pose would shrink sections through zero.
-      c.k[j] = std::clamp(c.k[j], -0.5, 1.0);
+      // slender limb. Never below 0: a joint straighter than its rest bend (an A-pose elbow
+      // straightened, a paw bent at rest) lengthens a centred tube's zone, but the real skin
+      // around a rest-bent joint does not gain that volume (its bones run off the sections'
+      // centroids; docs/deformation.md "Volume"), so shrinking its sections only loses volume.
+      c.k[j] = std::clamp(c.k[j], 0.0, 1.0);
     }
   }
   history_ = true;

@@ -155,7 +155,9 @@ struct SweepOptions {
   /// cap above).
   bool grow_blend_with_bend = true;
   /// Volume correction: a sin^2 bump of half-width volume_width_factor * h scales the cross
-  /// sections so that the swept volume of the zone is kept (Pappus); false: no correction.
+  /// sections so that the swept volume of the zone is kept (Pappus); false: no correction. The
+  /// bump only widens (height in [0, 1]): a joint posed straighter than its rest bend is left
+  /// as the arc puts it (docs/deformation.md "Volume").
   bool preserve_volume = true;
   double volume_width_factor = 4.0;
   /// Clamp vertices on the inside of a bend against the joint's bisector plane.
