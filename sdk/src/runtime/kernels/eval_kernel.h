@@ -205,36 +205,27 @@ DERMIS_INLINE void EvaluateBlocks(const PlanView& plan, const float* patches, st
       pos[0] = lanes[0][i];
       pos[1] = lanes[1][i];
       pos[2] = lanes[2][i];
+      // The lane's normal, or the dominant patch's where the blend's normal was degenerate.
+      float nrm[3];
+      if ((ok_bits >> i) & 1u) {
+        nrm[0] = lanes[3][i];
+        nrm[1] = lanes[4][i];
+        nrm[2] = lanes[5][i];
+      } else {
+        const float* fb =
+            patches + static_cast<std::size_t>(block.dominant[i]) * kPackedPatchStride + 27;
+        nrm[0] = fb[0];
+        nrm[1] = fb[1];
+        nrm[2] = fb[2];
+      }
       if (out.normals) {
-        float* nrm = reinterpret_cast<float*>(reinterpret_cast<unsigned char*>(out.normals) +
+        float* dst = reinterpret_cast<float*>(reinterpret_cast<unsigned char*>(out.normals) +
                                               index * out.normal_stride);
-        if ((ok_bits >> i) & 1u) {
-          nrm[0] = lanes[3][i];
-          nrm[1] = lanes[4][i];
-          nrm[2] = lanes[5][i];
-        } else {
-          const float* fb =
-              patches + static_cast<std::size_t>(block.dominant[i]) * kPackedPatchStride + 27;
-          nrm[0] = fb[0];
-          nrm[1] = fb[1];
-          nrm[2] = fb[2];
-        }
+        dst[0] = nrm[0];
+        dst[1] = nrm[1];
+        dst[2] = nrm[2];
       }
-      if (extras) {
-        float nrm[3];
-        if ((ok_bits >> i) & 1u) {
-          nrm[0] = lanes[3][i];
-          nrm[1] = lanes[4][i];
-          nrm[2] = lanes[5][i];
-        } else {
-          const float* fb =
-              patches + static_cast<std::size_t>(block.dominant[i]) * kPackedPatchStride + 27;
-          nrm[0] = fb[0];
-          nrm[1] = fb[1];
-          nrm[2] = fb[2];
-        }
-        WriteExtras(out, index, d, i, nrm);
-      }
+      if (extras) WriteExtras(out, index, d, i, nrm);
     }
   }
 }
