@@ -49,10 +49,12 @@ Status WriteTessellation(const TessellateArgs& a, const ManifoldDomain& domain,
                        pattern.samples.size(), positions.data(), normals.data())) {
     return Status::Internal("a tessellation sample could not be evaluated");
   }
-  MakeParentFolder(a.output);
   *vertices = positions.size();
   *triangles = pattern.triangles.size() / 3;
-  return WriteObj(a.output, positions, normals, pattern.triangles, header);
+  std::string text;
+  s = FormatObj(positions, normals, pattern.triangles, header, &text);
+  if (!s.ok()) return s;
+  return WriteOutput(a.output, text);
 }
 
 int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_point t0) {
@@ -81,7 +83,7 @@ int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_
                  "levels %d of %d -> %zu vertices, %zu triangles at level %d in %.2f s\nwrote %s\n",
                  a.input.c_str(), surface.domain->num_vertices(), surface.domain->num_faces(),
                  std::min(levels, available), available, nv, nt, a.level, seconds,
-                 a.output.c_str());
+                 OutputName(a.output).c_str());
   }
   return kExitOk;
 }
@@ -139,7 +141,8 @@ int RunTessellate(const TessellateArgs& a) {
                  "dermis tessellate: %s: %d input vertices, %d control vertices, %d control quads "
                  "-> %zu vertices, %zu triangles at level %d in %.2f s\nwrote %s\n",
                  mesh.source_name.c_str(), mesh.num_vertices(), surface.domain->num_vertices(),
-                 surface.domain->num_faces(), nv, nt, a.level, seconds, a.output.c_str());
+                 surface.domain->num_faces(), nv, nt, a.level, seconds,
+                 OutputName(a.output).c_str());
   }
   return kExitOk;
 }
@@ -156,7 +159,8 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   std::string names;
   for (const std::string& n : BuiltinMeshNames()) names += (names.empty() ? "" : ", ") + n;
   cmd->add_option("--builtin", args->builtin, "Use a built-in control mesh instead: " + names);
-  cmd->add_option("-o,--output", args->output, "Output OBJ (positions, vn normals, triangles)")
+  cmd->add_option("-o,--output", args->output,
+                  "Output OBJ (positions, vn normals, triangles); - writes it to stdout")
       ->required();
   AddLevelOption(cmd, &args->level, /*short_name=*/true);
   cmd->add_option("--chart", args->chart, "Chart radial exponent")
@@ -172,7 +176,7 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
       cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
-      [args] { return RunTessellate(*args); });
+      [args] { return RunTessellate(*args); }, nullptr, /*stdout_ok=*/true);
 }
 
 }  // namespace dermis::cli
