@@ -18,6 +18,7 @@
 #include "dermis/offline/io/obj_io.h"
 #include "dermis/offline/io/ply_io.h"
 #include "dermis/surface/tessellation.h"
+#include "progress_bar.h"
 
 namespace dermis::cli {
 namespace {
@@ -44,17 +45,29 @@ Status WriteTessellation(const TessellateArgs& a, const ManifoldDomain& domain,
   TessellationPattern pattern;
   Status s = TessellationPattern::Build(domain.topology(), a.level, &pattern);
   if (!s.ok()) return s;
-  std::vector<Vec3> positions(pattern.samples.size()), normals(pattern.samples.size());
-  if (!EvaluateSamples(domain, patches, displacement, pattern.samples.data(),
-                       pattern.samples.size(), positions.data(), normals.data())) {
-    return Status::Internal("a tessellation sample could not be evaluated");
+  const std::size_t n = pattern.samples.size();
+  std::vector<Vec3> positions(n), normals(n);
+  // Progress (docs/cli.md, "Conventions"): the samples evaluated in 64 runs (each sample on
+  // its own, so the result is the same), then the output as a stage and its time.
+  ProgressBar progress(kCommand, a.quiet);
+  const std::size_t run = std::max<std::size_t>(1, (n + 63) / 64);
+  for (std::size_t begin = 0; begin < n; begin += run) {
+    progress.Update("evaluating samples", begin, n);
+    const std::size_t count = std::min(run, n - begin);
+    if (!EvaluateSamples(domain, patches, displacement, pattern.samples.data() + begin, count,
+                         positions.data() + begin, normals.data() + begin)) {
+      progress.Clear();
+      return Status::Internal("a tessellation sample could not be evaluated");
+    }
   }
+  progress.Update("writing the OBJ", 0, 0);
   *vertices = positions.size();
   *triangles = pattern.triangles.size() / 3;
   std::string text;
   s = FormatObj(positions, normals, pattern.triangles, header, &text);
-  if (!s.ok()) return s;
-  return WriteOutput(a.output, text);
+  if (s.ok()) s = WriteOutput(a.output, text);
+  progress.Clear();
+  return s;
 }
 
 int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_point t0) {
