@@ -18,21 +18,32 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "dermis fit ${source} failed")
 endif()
 
-# command|what its progress line shows
+# command|what its progress line shows (the first)&what it must also show on a terminal (each
+# stage of the fit as a fraction of the fit's work, with the time left; the stages of animate)
 set(cases
   "export ${WORK}/rs.dsurf -o ${WORK}/bake.glb --bake-sweep --force|baking frames"
   "render ${WORK}/rs.dsurf -o ${WORK}/sheet.png --frames 3 --size 64x64 --force|posing frames"
-  "fit ${source} -o ${WORK}/again.dsurf --refit --force|mesh 0 component 0: ")
+  "tessellate --builtin cube --level 16 -o ${WORK}/cube.obj --force|evaluating samples&writing the OBJ"
+  "animate ${WORK}/rs.dsurf -o ${WORK}/pose.obj --time 1 --force|posing steps&evaluating the rest surface&writing the OBJ"
+  "fit ${source} -o ${WORK}/again.dsurf --refit --force|mesh 0 component 0: &% mesh 0 component 0: control mesh&% mesh 0 component 0: projection and optimisation&% mesh 0 component 0: displacement functions&% mesh 0 component 0: error metrics&simplified control mesh&s left")
 foreach(case ${cases})
   string(REPLACE "|" ";" parts "${case}")
   list(GET parts 0 args)
-  list(GET parts 1 shown)
+  list(GET parts 1 shown_all)
+  string(REPLACE "&" ";" shown_all "${shown_all}")
+  list(GET shown_all 0 shown)
   # A terminal: the line is drawn (and erased with ESC [ K).
   execute_process(COMMAND ${SCRIPT} -qec "${DERMIS} ${args}" /dev/null
                   OUTPUT_VARIABLE tty ERROR_VARIABLE tty_err RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "dermis ${args} under a terminal failed (${rc}):\n${tty}${tty_err}")
   endif()
+  foreach(part ${shown_all})
+    string(FIND "${tty}" "${part}" at)
+    if(at EQUAL -1)
+      message(FATAL_ERROR "dermis ${args}: '${part}' is not on the terminal:\n${tty}")
+    endif()
+  endforeach()
   string(FIND "${tty}" "${shown}" at)
   string(FIND "${tty}" "\r" cr)
   if(at EQUAL -1 OR cr EQUAL -1)

@@ -19,6 +19,7 @@
 #include "dermis/offline/character/skin_transfer.h"
 #include "dermis/offline/io/obj_io.h"
 #include "dermis/plugins/gltf.h"
+#include "progress_bar.h"
 
 namespace dermis::cli {
 namespace {
@@ -38,6 +39,7 @@ struct AnimateArgs {
   double fps = kDefaultPoseStepsPerSecond;
   int threads = 0;
   bool quiet = false;
+  std::string format;  // of `-o -`: obj or glb (default glb)
 };
 
 /// Shortest decimal form that reads back to the same double.
@@ -47,7 +49,8 @@ std::string FormatSeconds(double t) {
   return std::string(buffer, r.ptr);
 }
 
-/// Every triangle of the posed primitives as one OBJ (points and lines are not written).
+/// Every triangle of the posed primitives as one OBJ (points and lines are not written), to
+/// `path` or stdout ("-").
 Status WritePosedObj(const std::string& path, const CharacterPoser& poser,
                      const std::vector<PosedPrimitive>& posed, const std::string& header,
                      std::size_t* skipped) {
@@ -69,13 +72,20 @@ Status WritePosedObj(const std::string& path, const CharacterPoser& poser,
     normals.insert(normals.end(), posed[d].normals.begin(), posed[d].normals.end());
     for (const std::uint32_t i : tris) triangles.push_back(base + i);
   }
-  return WriteObj(path, positions, normals, triangles, header);
+  std::string text;
+  const Status s = FormatObj(positions, normals, triangles, header, &text);
+  if (!s.ok()) return s.WithContext(OutputName(path));
+  return WriteOutput(path, text);
 }
 
 int RunAnimate(const AnimateArgs& a) {
-  const bool obj = LowerExtension(a.output) == ".obj";
-  if (!obj && !IsGltfPath(a.output)) {
-    return Usage(kCommand, a.output + ": the output must be .obj, .glb or .gltf");
+  const bool to_stdout = IsStdout(a.output);
+  if (!a.format.empty() && !to_stdout) {
+    return Usage(kCommand, "--format applies to '-o -' (stdout); a file's format is its extension");
+  }
+  const bool obj = to_stdout ? a.format == "obj" : LowerExtension(a.output) == ".obj";
+  if (!to_stdout && !obj && !IsGltfPath(a.output)) {
+    return Usage(kCommand, a.output + ": the output must be .obj, .glb or .gltf (or - for stdout)");
   }
   Character ch;
   Status s = ReadCharacter(a.input, &ch);
@@ -91,14 +101,22 @@ int RunAnimate(const AnimateArgs& a) {
   CharacterPoseOptions options;
   s = MakePoseOptions(a.deformer, a.mode, a.level, a.displacement_levels, a.threads, &options);
   if (!s.ok()) return Fail(kCommand, s);
+  // Progress: the rest evaluation and the output have no count (a stage and its time), the
+  // clip's pose steps have one.
+  ProgressBar progress(kCommand, a.quiet);
+  const auto fail = [&progress](const Status& status) {
+    progress.Clear();  // the message on a line of its own
+    return Fail(kCommand, status);
+  };
+  progress.Update("evaluating the rest surface", 0, 0);
   CharacterPoser poser;
   s = CharacterPoser::Build(ch, options, &poser);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return fail(s);
   std::vector<PosedPrimitive> posed;
-  s = poser.PoseClip(clip, a.time, a.fps, &posed);
-  if (!s.ok()) return Fail(kCommand, s);
+  s = poser.PoseClip(clip, a.time, a.fps, &posed, progress.Callback());
+  if (!s.ok()) return fail(s);
+  progress.Update(obj ? "writing the OBJ" : "writing the glTF", 0, 0);
 
-  MakeParentFolder(a.output);
   const std::string what = clip < 0 ? std::string("rest pose")
                                     : "clip " + std::to_string(clip) + " '" +
                                           ch.asset.animations[static_cast<std::size_t>(clip)].name +
@@ -114,9 +132,18 @@ int RunAnimate(const AnimateArgs& a) {
     if (s.ok()) {
       GltfExportOptions gltf;
       gltf.generator = std::string("Dermis ") + DERMIS_VERSION;
-      s = ExportGltf(out, gltf, a.output);
+      if (to_stdout) {
+        // The GLB on stdout, written once complete (nothing half-written).
+        std::string glb;
+        s = SerializeGltf(out, gltf, /*binary=*/true, &glb);
+        if (s.ok()) s = WriteOutput(a.output, glb);
+      } else {
+        MakeParentFolder(a.output);
+        s = ExportGltf(out, gltf, a.output);
+      }
     }
   }
+  progress.Clear();
   if (!s.ok()) return Fail(kCommand, s);
   if (!a.quiet) {
     std::size_t vertices = 0;
@@ -133,7 +160,7 @@ int RunAnimate(const AnimateArgs& a) {
                  "dermis animate: %s, %s deformer%s, %s mode: %zu primitives, %zu vertices\nwrote "
                  "%s\n",
                  what.c_str(), a.deformer.c_str(), steps.c_str(), a.mode.c_str(), posed.size(),
-                 vertices, a.output.c_str());
+                 vertices, OutputName(a.output).c_str());
   }
   return kExitOk;
 }
@@ -147,8 +174,12 @@ void AddAnimateCommand(CLI::App* app, std::function<int()>* run) {
       "Pose a fitted character (.dsurf) at one time of a clip: control vertices deformed, patches "
       "refitted, the displaced surface evaluated; world space, as .obj, .glb or .gltf.");
   cmd->add_option("INPUT", args->input, "Fitted character (.dsurf)")->required();
-  cmd->add_option("-o,--output", args->output, "Posed mesh: .obj (with normals), .glb or .gltf")
+  cmd->add_option("-o,--output", args->output,
+                  "Posed mesh: .obj (with normals), .glb or .gltf; - writes it to stdout "
+                  "(--format)")
       ->required();
+  cmd->add_option("--format", args->format, "Format of '-o -' (stdout): glb (default) or obj")
+      ->check(CLI::IsMember({"glb", "obj"}));
   cmd->add_option("--clip", args->clip,
                   "Clip name or index (default: 0, or the rest pose when there are no clips; "
                   "'rest': the rest pose)");
@@ -178,7 +209,8 @@ void AddAnimateCommand(CLI::App* app, std::function<int()>* run) {
   CLI::Option* time = cmd->get_option("--time");
   SetRunWithOutputs(
       cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
-      [args] { return RunAnimate(*args); }, [args, time] { args->time_given = time->count() > 0; });
+      [args] { return RunAnimate(*args); }, [args, time] { args->time_given = time->count() > 0; },
+      /*stdout_ok=*/true);
 }
 
 }  // namespace dermis::cli

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "dermis/core/file_io.h"
 
 namespace dermis::cli {
 
@@ -26,6 +27,18 @@ void MakeParentFolder(const std::string& path) {
   if (parent.empty()) return;
   std::error_code ec;
   std::filesystem::create_directories(parent, ec);
+}
+
+Status WriteOutput(const std::string& path, const std::string& bytes) {
+  if (IsStdout(path)) {
+    if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() ||
+        std::fflush(stdout) != 0) {
+      return Status::IoError("<stdout>: write failed");
+    }
+    return Status::Ok();
+  }
+  MakeParentFolder(path);
+  return WriteFileAtomically(path, bytes);
 }
 
 void AddQuietFlag(CLI::App* cmd, bool* quiet) {

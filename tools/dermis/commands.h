@@ -29,6 +29,18 @@ int Usage(const char* command, const std::string& message);
 /// written).
 void MakeParentFolder(const std::string& path);
 
+/// True for the output path "-": the command writes to stdout (OBJ text or a GLB).
+inline bool IsStdout(const std::string& path) { return path == "-"; }
+
+/// Writes a complete output: to stdout for "-" (binary-safe, flushed; nothing else is written
+/// there), otherwise atomically to `path` (its folder made). Errors name the path or <stdout>.
+Status WriteOutput(const std::string& path, const std::string& bytes);
+
+/// How an output path is shown in messages ("<stdout>" for "-").
+inline std::string OutputName(const std::string& path) {
+  return IsStdout(path) ? std::string("<stdout>") : path;
+}
+
 /// Adds -q,--quiet ("print nothing but errors") to `cmd`.
 void AddQuietFlag(CLI::App* cmd, bool* quiet);
 
@@ -39,7 +51,7 @@ void AddThreadsOption(CLI::App* cmd, int* threads, const std::string& prefix = "
 /// `*run` refuses (CheckOverwrite) any of `outputs()` that exists unless --force is given, then
 /// returns `body()`. `at_parse`, if set, runs when the subcommand is parsed. An output "-"
 /// (stdout) is a usage error unless `stdout_ok` (commands whose format can stream: export's
-/// GLB).
+/// GLB, tessellate's OBJ, animate's OBJ or GLB).
 void SetRunWithOutputs(CLI::App* cmd, std::function<int()>* run, const char* command,
                        std::function<std::vector<std::string>()> outputs, std::function<int()> body,
                        std::function<void()> at_parse = nullptr, bool stdout_ok = false);

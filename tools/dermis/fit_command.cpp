@@ -20,6 +20,7 @@
 #include "dermis/offline/io/point_input.h"
 #include "importers.h"
 #include "progress_bar.h"
+#include "report_json.h"
 
 namespace dermis::cli {
 namespace {
@@ -108,33 +109,33 @@ void ApplyDisplacementArgs(const FitArgs& a, DisplacementFitOptions* o) {
 }
 
 /// The options a fit ran with, after the library's defaults for the input kind were applied,
-/// so that a report says how to repeat its run.
-nlohmann::ordered_json EffectiveOptionsJson(const FitOptions& f) {
-  nlohmann::ordered_json o;
-  o["control_vertices"] = f.control_vertices;
-  o["control_fit_iterations"] = f.control_fit_iterations;
+/// keyed by their command-line names (StartReport), so that a report says how to repeat its run.
+Json EffectiveOptionsJson(const FitArgs& a, const FitOptions& f) {
+  Json o;
+  o["control-vertices"] = f.control_vertices;
+  if (!a.control_mesh.empty()) o["control-mesh"] = a.control_mesh;
+  o["control-fit"] = f.control_fit_iterations;
   o["holdout"] = f.holdout;
   const DisplacementFitOptions& d = f.displacement;
   o["displacement"] = d.method == DisplacementMethod::kMba ? "mba" : "adaptive";
   o["levels"] = d.max_levels;
   o["density"] = d.density;
-  o["finest_passes"] = d.finest_passes;
+  o["finest-passes"] = d.finest_passes;
   o["smoothing"] = d.smoothing;
-  o["node_weight"] = d.adaptive.min_node_weight;
-  o["level_smoothing"] = d.adaptive.smoothing;
+  o["node-weight"] = d.adaptive.min_node_weight;
+  o["level-smoothing"] = d.adaptive.smoothing;
   o["validation"] = d.adaptive.validation;
-  o["min_improvement"] = d.adaptive.min_improvement;
-  o["residual"] = d.adaptive.residual_threshold;
-  o["budget"] = d.adaptive.max_coefficients_per_point;
+  o["min-improvement"] = d.adaptive.min_improvement;
+  o["residual-threshold"] = d.adaptive.residual_threshold;
+  o["coefficients-per-point"] = d.adaptive.max_coefficients_per_point;
   o["consistency"] = d.adaptive.consistency;
+  o["threads"] = a.threads;
   return o;
 }
 
-nlohmann::ordered_json ReportJson(const FitArgs& a, const FitOptions& options, const FitReport& r) {
-  nlohmann::ordered_json j;
-  j["schema"] = "dermis.fit/1";
-  j["dermis_version"] = DERMIS_VERSION;
-  j["options"] = EffectiveOptionsJson(options);
+Json ReportJson(const FitArgs& a, const FitOptions& options, const FitReport& r) {
+  Json j;
+  StartReport(&j, "dermis.fit/1", EffectiveOptionsJson(a, options));
   j["input"] = a.input;
   j["output"] = a.output;
   j["points"] = r.points;
@@ -200,11 +201,11 @@ nlohmann::ordered_json ReportJson(const FitArgs& a, const FitOptions& options, c
 
 Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, const Character& ch,
                          const CharacterFitReport& r) {
+  Json options_json = EffectiveOptionsJson(a, options.fit);
+  options_json["control-ratio"] = options.vertex_ratio;
+  options_json["refit"] = a.refit;
   Json j;
-  j["schema"] = "dermis.fit-character/1";
-  j["dermis_version"] = DERMIS_VERSION;
-  j["options"] = EffectiveOptionsJson(options.fit);
-  j["options"]["control_ratio"] = options.vertex_ratio;
+  StartReport(&j, "dermis.fit-character/1", std::move(options_json));
   j["input"] = a.input;
   j["output"] = a.output;
   j["meshes"] = r.meshes;
@@ -261,9 +262,7 @@ int RunFitCharacter(const FitArgs& a) {
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.threads = a.threads;
   ProgressBar progress(kCommand, a.quiet);
-  if (progress.enabled()) {
-    options.progress = [&](const std::string& st) { progress.Update(st.c_str(), 0, 0); };
-  }
+  options.progress = progress.Callback();
   Character ch;
   CharacterFitReport report;
   s = FitCharacter(asset, options, &ch, &report);
@@ -334,9 +333,7 @@ int RunFit(const FitArgs& a) {
   options.holdout = a.holdout;
   options.threads = a.threads;
   ProgressBar progress(kCommand, a.quiet);
-  if (progress.enabled()) {
-    options.progress = [&](const std::string& st) { progress.Update(st.c_str(), 0, 0); };
-  }
+  options.progress = progress.Callback();
   FittedSurface fitted;
   FitReport report;
   s = FitSurface(input, options, &fitted, &report);

@@ -27,6 +27,7 @@
 #include "dermis/runtime/character.h"
 #include "dermis/runtime/runtime.h"
 #include "importers.h"
+#include "report_json.h"
 
 namespace dermis::cli {
 namespace {
@@ -493,7 +494,9 @@ int RunInspect(const InspectArgs& a) {
   }
   const std::string ext = LowerExtension(a.input);
   Json report;
-  report["schema"] = kInspectSchema;
+  Json options;
+  options["memory-level"] = a.memory_level;
+  StartReport(&report, kInspectSchema, std::move(options));
   report["file"] = a.input;
   report["format"] = ext.empty() ? std::string("unknown") : ext.substr(1);
   report["bytes"] = size;

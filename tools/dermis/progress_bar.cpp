@@ -15,7 +15,7 @@ ProgressBar::ProgressBar(const char* command, bool quiet) : command_(command) {
   const char* force = std::getenv("DERMIS_PROGRESS");
   const bool forced = force != nullptr && std::strcmp(force, "1") == 0;
   enabled_ = !quiet && (forced || ::isatty(STDERR_FILENO) == 1);
-  start_ = stage_start_ = std::chrono::steady_clock::now();
+  start_ = stage_start_ = count_start_ = std::chrono::steady_clock::now();
 }
 
 ProgressBar::~ProgressBar() { Clear(); }
@@ -30,6 +30,11 @@ void ProgressBar::Clear() {
 void ProgressBar::Update(const char* stage, std::size_t done, std::size_t total) {
   if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
+  // The time left comes from the rate since the count began: a count is one total, counted
+  // up (the stage may change along it, as a fit's stages share one count of its work).
+  if (total != total_ || done < done_) count_start_ = now;
+  total_ = total;
+  done_ = done;
   if (stage_ != stage) {
     stage_ = stage;
     stage_start_ = now;
@@ -37,7 +42,8 @@ void ProgressBar::Update(const char* stage, std::size_t done, std::size_t total)
     return;
   }
   last_ = now;
-  const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
+  const double elapsed =
+      std::chrono::duration<double>(now - (total == 0 ? stage_start_ : count_start_)).count();
   char line[160];
   if (total == 0) {
     std::snprintf(line, sizeof line, "dermis %s: %s (%.0f s)", command_, stage, elapsed);

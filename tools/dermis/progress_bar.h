@@ -23,7 +23,9 @@ class ProgressBar {
   /// True if it draws (stderr is a TTY, not quiet; DERMIS_PROGRESS=1 forces it on for tests).
   bool enabled() const { return enabled_; }
   /// Draws `done` of `total` of `stage` (total 0: the stage and the time so far), at most
-  /// 10 times a second (and always at the end of a stage).
+  /// 10 times a second (and always when the stage changes). The time left is the rate since
+  /// the count began (a new total, or a smaller done) applied to what is left, so a count
+  /// that spans stages (a fit's work) gives one estimate.
   void Update(const char* stage, std::size_t done, std::size_t total);
   /// Erases the line (before other output, and at the end).
   void Clear();
@@ -36,7 +38,8 @@ class ProgressBar {
   bool enabled_ = false;
   bool drawn_ = false;
   std::string stage_;
-  std::chrono::steady_clock::time_point start_, stage_start_, last_;
+  std::size_t total_ = 0, done_ = 0;
+  std::chrono::steady_clock::time_point start_, stage_start_, count_start_, last_;
 };
 
 }  // namespace dermis::cli

@@ -18,6 +18,7 @@
 #include "dermis/offline/io/obj_io.h"
 #include "dermis/offline/io/ply_io.h"
 #include "dermis/surface/tessellation.h"
+#include "progress_bar.h"
 
 namespace dermis::cli {
 namespace {
@@ -44,15 +45,29 @@ Status WriteTessellation(const TessellateArgs& a, const ManifoldDomain& domain,
   TessellationPattern pattern;
   Status s = TessellationPattern::Build(domain.topology(), a.level, &pattern);
   if (!s.ok()) return s;
-  std::vector<Vec3> positions(pattern.samples.size()), normals(pattern.samples.size());
-  if (!EvaluateSamples(domain, patches, displacement, pattern.samples.data(),
-                       pattern.samples.size(), positions.data(), normals.data())) {
-    return Status::Internal("a tessellation sample could not be evaluated");
+  const std::size_t n = pattern.samples.size();
+  std::vector<Vec3> positions(n), normals(n);
+  // Progress (docs/cli.md, "Conventions"): the samples evaluated in 64 runs (each sample on
+  // its own, so the result is the same), then the output as a stage and its time.
+  ProgressBar progress(kCommand, a.quiet);
+  const std::size_t run = std::max<std::size_t>(1, (n + 63) / 64);
+  for (std::size_t begin = 0; begin < n; begin += run) {
+    progress.Update("evaluating samples", begin, n);
+    const std::size_t count = std::min(run, n - begin);
+    if (!EvaluateSamples(domain, patches, displacement, pattern.samples.data() + begin, count,
+                         positions.data() + begin, normals.data() + begin)) {
+      progress.Clear();
+      return Status::Internal("a tessellation sample could not be evaluated");
+    }
   }
-  MakeParentFolder(a.output);
+  progress.Update("writing the OBJ", 0, 0);
   *vertices = positions.size();
   *triangles = pattern.triangles.size() / 3;
-  return WriteObj(a.output, positions, normals, pattern.triangles, header);
+  std::string text;
+  s = FormatObj(positions, normals, pattern.triangles, header, &text);
+  if (s.ok()) s = WriteOutput(a.output, text);
+  progress.Clear();
+  return s;
 }
 
 int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_point t0) {
@@ -81,7 +96,7 @@ int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_
                  "levels %d of %d -> %zu vertices, %zu triangles at level %d in %.2f s\nwrote %s\n",
                  a.input.c_str(), surface.domain->num_vertices(), surface.domain->num_faces(),
                  std::min(levels, available), available, nv, nt, a.level, seconds,
-                 a.output.c_str());
+                 OutputName(a.output).c_str());
   }
   return kExitOk;
 }
@@ -139,7 +154,8 @@ int RunTessellate(const TessellateArgs& a) {
                  "dermis tessellate: %s: %d input vertices, %d control vertices, %d control quads "
                  "-> %zu vertices, %zu triangles at level %d in %.2f s\nwrote %s\n",
                  mesh.source_name.c_str(), mesh.num_vertices(), surface.domain->num_vertices(),
-                 surface.domain->num_faces(), nv, nt, a.level, seconds, a.output.c_str());
+                 surface.domain->num_faces(), nv, nt, a.level, seconds,
+                 OutputName(a.output).c_str());
   }
   return kExitOk;
 }
@@ -156,7 +172,8 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   std::string names;
   for (const std::string& n : BuiltinMeshNames()) names += (names.empty() ? "" : ", ") + n;
   cmd->add_option("--builtin", args->builtin, "Use a built-in control mesh instead: " + names);
-  cmd->add_option("-o,--output", args->output, "Output OBJ (positions, vn normals, triangles)")
+  cmd->add_option("-o,--output", args->output,
+                  "Output OBJ (positions, vn normals, triangles); - writes it to stdout")
       ->required();
   AddLevelOption(cmd, &args->level, /*short_name=*/true);
   cmd->add_option("--chart", args->chart, "Chart radial exponent")
@@ -172,7 +189,7 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
       cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
-      [args] { return RunTessellate(*args); });
+      [args] { return RunTessellate(*args); }, nullptr, /*stdout_ok=*/true);
 }
 
 }  // namespace dermis::cli

@@ -19,6 +19,7 @@
 #include "dermis/runtime/character.h"
 #include "dermis/runtime/runtime.h"
 #include "importers.h"
+#include "report_json.h"
 
 namespace dermis::cli {
 namespace {
@@ -117,7 +118,9 @@ int RunValidate(const ValidateArgs& a) {
   std::string bytes;
   Status s = ReadFileBytes(a.input, "the input", &bytes);
   nlohmann::json j;
-  j["schema"] = "dermis.validate/1";
+  nlohmann::json options;
+  options["require-khronos"] = a.require_khronos;
+  StartReport(&j, "dermis.validate/1", std::move(options));
   j["input"] = a.input;
   bool valid = s.ok();
   std::string kind;

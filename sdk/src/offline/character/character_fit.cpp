@@ -259,9 +259,10 @@ ComponentMesh MakeComponentMesh(const WeldedMesh& w, const Components& component
 /// vertex i's), then samples on its triangles; a control-vertex count from the vertex ratio;
 /// the simplification's control mesh instead of the remesh where it fits clearly better (then
 /// `kept_simplified` says so). Returns an empty string or why the component stays unfitted.
+/// `part_progress`, if set, gets the stage and the fraction of the component's work done.
 std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& options,
-                         const std::string& stage, FittedSurface* fitted, FitReport* fr,
-                         std::string* kept_simplified) {
+                         const std::function<void(const std::string&, double)>& part_progress,
+                         FittedSurface* fitted, FitReport* fr, std::string* kept_simplified) {
   std::string reason = CheckComponent(dense, options.min_vertices);
   if (!reason.empty()) return reason;
   FitOptions fo = options.fit;
@@ -292,19 +293,32 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
     input.points.insert(input.points.end(), extra.begin(), extra.end());
   }
   input.mesh = &dense;
-  if (options.progress) {
-    fo.progress = [&](const std::string& s) { options.progress(stage + ": " + s); };
+  // With the simplification's fit to compare, each fit is half of the component's work.
+  const bool compare =
+      options.compare_simplified && fo.control_method == ControlMeshMethod::kRemesh;
+  const double share = compare ? 0.5 : 1.0;
+  if (part_progress) {
+    fo.progress = [&](const char* st, std::size_t done, std::size_t total) {
+      part_progress(
+          st, total > 0 ? share * static_cast<double>(done) / static_cast<double>(total) : 0.0);
+    };
   }
   const Status s = FitSurface(input, fo, fitted, fr);
   if (!s.ok()) return s.message();
-  if (options.compare_simplified && fo.control_method == ControlMeshMethod::kRemesh &&
-      fr->control_mesh.method == "remesh") {
+  if (compare && fr->control_mesh.method == "remesh") {
     // The remesh moves the source's crease vertices off its creases; a simplification keeps
     // them. Fit on both and keep the simplification's only where its two-sided Hausdorff
     // distance (E3, level 8 against the component's triangles) is clearly lower.
     FitOptions so = fo;
     so.control_method = ControlMeshMethod::kSimplify;
     so.progress = nullptr;
+    if (part_progress) {
+      so.progress = [&](const char* st, std::size_t done, std::size_t total) {
+        part_progress(
+            std::string(st) + ", simplified control mesh",
+            0.5 + (total > 0 ? 0.5 * static_cast<double>(done) / static_cast<double>(total) : 0.0));
+      };
+    }
     FittedSurface alt;
     FitReport alt_report;
     if (FitSurface(input, so, &alt, &alt_report).ok() &&
@@ -424,6 +438,19 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
   CharacterFitReport rep;
   rep.meshes = static_cast<std::int64_t>(asset.meshes.size());
   double e1_sum = 0.0;
+  // Progress: the character's work in triangles of the source; mesh m's start at
+  // mesh_start[m], each component's at its first triangle's count.
+  std::vector<std::size_t> mesh_start(asset.meshes.size() + 1, 0);
+  if (options.progress) {
+    for (std::size_t m = 0; m < asset.meshes.size(); ++m) {
+      std::size_t triangles = 0;
+      for (const AssetPrimitive& prim : asset.meshes[m].primitives) {
+        triangles += PrimitiveTriangles(prim).size() / 3;
+      }
+      mesh_start[m + 1] = mesh_start[m] + triangles;
+    }
+  }
+  const std::size_t work_total = mesh_start.back();
   ch.bindings.resize(asset.meshes.size());
   for (std::size_t m = 0; m < asset.meshes.size(); ++m) {
     const AssetMesh& mesh = asset.meshes[m];
@@ -468,7 +495,20 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
       FittedSurface fitted;
       FitReport fr;
       std::string kept_simplified;
-      unfitted.reason = FitComponent(dense, options, stage, &fitted, &fr, &kept_simplified);
+      std::function<void(const std::string&, double)> part_progress;
+      if (options.progress) {
+        std::size_t start = mesh_start[m];
+        for (std::size_t c2 = 0; c2 < c; ++c2) start += components.triangles[c2].size();
+        const std::size_t triangles = components.triangles[c].size();
+        part_progress = [&options, &stage, start, triangles, work_total](const std::string& st,
+                                                                         double fraction) {
+          const auto done = start + static_cast<std::size_t>(
+                                        std::floor(fraction * static_cast<double>(triangles)));
+          const std::string what = stage + ": " + st;
+          options.progress(what.c_str(), std::min(done, work_total), work_total);
+        };
+      }
+      unfitted.reason = FitComponent(dense, options, part_progress, &fitted, &fr, &kept_simplified);
       if (!unfitted.reason.empty()) {
         ch.unfitted.push_back(unfitted);
         ++rep.parts_unfitted;

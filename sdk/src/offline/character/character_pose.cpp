@@ -355,7 +355,8 @@ Status CharacterPoser::Evaluate(std::vector<PosedPrimitive>* out) {
 }
 
 Status CharacterPoser::PoseClip(int clip, double time, double steps_per_second,
-                                std::vector<PosedPrimitive>* out) {
+                                std::vector<PosedPrimitive>* out,
+                                const ProgressCallback& progress) {
   State& st = *state_;
   ResetHistory();
   AssetPose pose;
@@ -380,12 +381,19 @@ Status CharacterPoser::PoseClip(int clip, double time, double steps_per_second,
   const double duration = st.asset.animations[static_cast<std::size_t>(clip)].Duration();
   std::vector<double> steps = ClipStepTimes(std::min(time, duration), steps_per_second);
   if (time > duration) steps.push_back(time);
-  for (const double t : steps) {
-    SamplePose(st.asset, clip, t, &pose);
+  const std::size_t work = steps.size() + 1;  // the steps, then the evaluation
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    ReportProgress(progress, "posing steps", i, work);
+    SamplePose(st.asset, clip, steps[i], &pose);
     const Status s = SetPose(pose);
-    if (!s.ok()) return s.WithContext("clip " + std::to_string(clip) + " at " + std::to_string(t));
+    if (!s.ok()) {
+      return s.WithContext("clip " + std::to_string(clip) + " at " + std::to_string(steps[i]));
+    }
   }
-  return Evaluate(out);
+  ReportProgress(progress, "posing steps", steps.size(), work);
+  const Status s = Evaluate(out);
+  ReportProgress(progress, "posing steps", work, work);
+  return s;
 }
 
 Status BuildPosedAsset(const CharacterPoser& poser, const std::vector<PosedPrimitive>& posed,

@@ -21,6 +21,15 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The stages' cost per data point, in points projected (FitPoints, the projection stage's
+// work), rounded from the times measured on the Stanford bunny, the demo creature and
+// RiggedSimple (docs/fitting.md, "Progress"): they only set how far the progress moves per
+// stage.
+constexpr std::size_t kControlMeshWork = 2;
+constexpr std::size_t kControlRoundWork = 1;
+constexpr std::size_t kDisplacementWork = 3;
+constexpr std::size_t kMetricsWork = 6;
+
 double SecondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -74,8 +83,21 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   rep.points = static_cast<std::int64_t>(input.points.size());
   rep.points_dropped = input.points_dropped;
   rep.threads = ResolveThreadCount(options.threads);
-  auto progress = [&](const std::string& stage) {
-    if (options.progress) options.progress(stage);
+  // Progress (docs/fitting.md, "Progress"): each stage weighs its measured cost per data
+  // point, in units of one point projected (FitPoints); skipped stages are jumped.
+  const std::size_t n = input.points.size();
+  const bool control_fit_planned = !input.control && options.control_fit_iterations > 0;
+  const std::size_t rounds =
+      control_fit_planned ? static_cast<std::size_t>(options.control_fit_iterations) : 0;
+  const std::size_t w_control_mesh = input.control ? n / 8 : kControlMeshWork * n;
+  const std::size_t w_round = kControlRoundWork * n;
+  const std::size_t w_projection = n;
+  const std::size_t w_displacement = kDisplacementWork * n;
+  const std::size_t w_metrics = kMetricsWork * n;
+  const std::size_t work_total =
+      w_control_mesh + rounds * w_round + w_projection + w_displacement + w_metrics;
+  auto progress = [&](const char* stage, std::size_t done) {
+    ReportProgress(options.progress, stage, std::min(done, work_total), work_total);
   };
   if (input.points.empty()) return Status::InvalidInput(where + ": no data points to fit");
   Vec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
@@ -96,7 +118,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   const Clock::time_point t_total = Clock::now();
 
   // 1. Control mesh, domain and rest patches.
-  progress("control mesh");
+  progress("control mesh", 0);
   Clock::time_point t0 = Clock::now();
   FittedSurface fitted;
   if (input.control) {
@@ -139,7 +161,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   if (!input.control && options.control_fit_iterations > 0 &&
       static_cast<double>(fit_points.size()) >=
           options.control_fit_min_points_per_vertex * domain.num_vertices()) {
-    progress("control-vertex fit");
+    progress("control-vertex fit", w_control_mesh);
     ControlFitOptions cf = options.control_fit;
     cf.threads = rep.threads;
     std::vector<Vec3> x = fitted.surface.control.positions;
@@ -150,6 +172,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
       fitted.surface.control.positions = x;
       domain.FitPatches(x.data(), fitted.surface.patches.data());
       ++rep.control_fit_rounds;
+      progress("control-vertex fit", w_control_mesh + rep.control_fit_rounds * w_round);
     }
     // A built control mesh is all quads, so its vertices are the quad mesh's.
     fitted.control_mesh.positions = fitted.surface.control.positions;
@@ -159,7 +182,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   rep.seconds.control_mesh = SecondsSince(t0);
 
   // 2. Projection and optimisation of the fitted points.
-  progress("projection and optimisation");
+  progress("projection and optimisation", w_control_mesh + rounds * w_round);
   t0 = Clock::now();
   FitPoints(fitted.surface, fit_points, pf, &fits);
   for (const PointFit& f : fits) {
@@ -171,7 +194,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   rep.seconds.projection_optimization = SecondsSince(t0);
 
   // 3. Displacement functions.
-  progress("displacement functions");
+  progress("displacement functions", w_control_mesh + rounds * w_round + w_projection);
   t0 = Clock::now();
   DisplacementFitOptions dopt = options.displacement;
   dopt.threads = rep.threads;
@@ -216,7 +239,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   }
 
   // 4. Error metrics, in the unit where the data's largest side is 1.
-  progress("error metrics");
+  progress("error metrics", work_total - w_metrics);
   t0 = Clock::now();
   const Displacement* disp = fitted.displacement.get();
   const double inv = 1.0 / rep.scale;
@@ -314,6 +337,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   }
   rep.seconds.metrics = SecondsSince(t0);
   fitted.point_fits = std::move(fits);
+  progress("error metrics", work_total);
   *out = std::move(fitted);
   if (report) *report = rep;
   return Status::Ok();

@@ -224,10 +224,20 @@ Status ReadObj(const std::string& path, PolygonMesh* mesh, bool require_faces) {
 Status WriteObj(const std::string& path, const std::vector<Vec3>& positions,
                 const std::vector<Vec3>& normals, const std::vector<std::uint32_t>& triangles,
                 const std::string& header_comment) {
+  std::string text;
+  const Status s = FormatObj(positions, normals, triangles, header_comment, &text);
+  if (!s.ok()) return s.WithContext(path);
+  return WriteFileAtomically(path, text);
+}
+
+Status FormatObj(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
+                 const std::vector<std::uint32_t>& triangles, const std::string& header_comment,
+                 std::string* text) {
   if (!normals.empty() && normals.size() != positions.size()) {
     return Status::InvalidInput("normal count does not match position count");
   }
-  std::string out;
+  std::string& out = *text;
+  out.clear();
   out.reserve(positions.size() * 100 + triangles.size() * 12);
   if (!header_comment.empty()) out += "# " + header_comment + "\n";
   AppendVectors(&out, "v ", positions);
@@ -245,7 +255,7 @@ Status WriteObj(const std::string& path, const std::vector<Vec3>& positions,
     }
     out += '\n';
   }
-  return WriteFileAtomically(path, out);
+  return Status::Ok();
 }
 
 Status WritePolygonObj(const std::string& path, const PolygonMesh& mesh) {

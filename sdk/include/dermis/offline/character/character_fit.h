@@ -80,8 +80,11 @@ struct CharacterFitOptions {
   double simplified_margin = 0.9;
   /// Components with fewer welded vertices are left unfitted ("too small").
   int min_vertices = 8;
-  /// Called with "mesh M component C: stage" as the fit progresses (may be empty).
-  std::function<void(const std::string&)> progress;
+  /// Progress (may be empty): called with "mesh M component C: STAGE" (FitOptions::progress's
+  /// stages; "..., simplified control mesh" for the compare_simplified fit) and the work done
+  /// of the whole character's, in triangles of the source: each component weighs its
+  /// triangles, split over its fits by their work units. The total is fixed at the start.
+  ProgressCallback progress;
 };
 
 /// Totals over the character.

@@ -107,8 +107,10 @@ class CharacterPoser {
   /// ResetHistory(), then clip `clip` played through ClipStepTimes(min(time, duration),
   /// steps_per_second) and, past the clip's end, `time`
   /// (SetPose() at each step), then Evaluate(). `clip` < 0: the rest pose (RestPose()). Times past
-  /// the clip's end hold its last keyframe.
-  Status PoseClip(int clip, double time, double steps_per_second, std::vector<PosedPrimitive>* out);
+  /// the clip's end hold its last keyframe. `progress`, if set, is called once per pose step
+  /// and once for the evaluation ("posing steps", done, steps + 1).
+  Status PoseClip(int clip, double time, double steps_per_second, std::vector<PosedPrimitive>* out,
+                  const ProgressCallback& progress = {});
 
  private:
   struct State;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "dermis/core/progress.h"
 #include "dermis/core/status.h"
 #include "dermis/offline/build/control_mesh.h"
 #include "dermis/offline/build/domain_builder.h"
@@ -46,8 +47,12 @@ struct FitOptions {
   double holdout = 0.1;
   std::uint64_t holdout_seed = 0x44657266u;
   int threads = 0;  ///< 0: hardware concurrency. Results do not depend on it.
-  /// Called with a short stage name as the fit progresses (may be empty).
-  std::function<void(const std::string& stage)> progress;
+  /// Progress (may be empty): called with the stage ("control mesh", "control-vertex fit",
+  /// "projection and optimisation", "displacement functions", "error metrics") and the work
+  /// done of the whole fit's, in units of one data point projected once: each stage weighs
+  /// what it measured to cost per point (docs/fitting.md, "Progress"). The total is fixed at
+  /// the start, so done / total is the fit's fraction; a stage that is skipped is jumped.
+  ProgressCallback progress;
 };
 
 /// What to fit.

@@ -36,6 +36,11 @@ Status WriteObj(const std::string& path, const std::vector<Vec3>& positions,
                 const std::vector<Vec3>& normals, const std::vector<std::uint32_t>& triangles,
                 const std::string& header_comment = "");
 
+/// The text WriteObj() writes (for a stream such as stdout); `text` is replaced.
+Status FormatObj(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
+                 const std::vector<std::uint32_t>& triangles, const std::string& header_comment,
+                 std::string* text);
+
 /// Writes a polygon mesh (positions and faces) atomically.
 Status WritePolygonObj(const std::string& path, const PolygonMesh& mesh);
 
