@@ -5,8 +5,9 @@
 Usage: scripts/fuzz_seeds.py OUT_DIR [DERMIS_BINARY]
 
 Writes OUT_DIR/<harness>/ for obj, ply, dsurf, capi, asset_stream, gltf and assimp. The .dsurf
-seeds (and the asset streams cut from them) need the dermis tool (a Release build); without it
-those harnesses start from the regression inputs only. Prints what it wrote; exits 0 with a
+seeds (fitted files, their runtime archives, and the asset streams cut from them) need the
+dermis tool (a Release build); without it those harnesses start from the regression inputs
+only. Prints what it wrote; exits 0 with a
 note when ../shared/data is absent.
 """
 import math
@@ -155,6 +156,18 @@ def main():
                 data = f.read()
             write(os.path.join(out, 'dsurf'), name, data)
             write(os.path.join(out, 'capi'), name, data)
+            # Its runtime archives (version 4, issue 17): f32 and 16-bit displacements.
+            for suffix, flags in (('runtime', []), ('runtime16', ['--quantize-displacements'])):
+                packed = os.path.join(tmp, name.replace('.dsurf', '.%s.dsurf' % suffix))
+                r = subprocess.run([dermis, 'pack', target, '-o', packed, '-q'] + flags,
+                                   capture_output=True, text=True)
+                if r.returncode != 0:
+                    print('fuzz_seeds: dermis pack %s failed: %s' % (name, r.stderr.strip()))
+                    continue
+                with open(packed, 'rb') as f:
+                    archive = f.read()
+                write(os.path.join(out, 'dsurf'), os.path.basename(packed), archive)
+                write(os.path.join(out, 'capi'), os.path.basename(packed), archive)
             at = data.find(b'DASSET\0\0')
             if at >= 8:
                 (n,) = struct.unpack('<Q', data[at - 8:at])

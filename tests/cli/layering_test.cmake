@@ -56,7 +56,7 @@ set(test_rules
   "asset|dermis/(core|asset)/"
   "surface|dermis/(core|surface)/|dermis/offline/(geometry|build|io)/|support/(domains|meshes|random|wavy_displacement)\\.h"
   "dsurf|dermis/(core|surface|dsurf|runtime|asset)/|support/(fixtures|temp_files)\\.h"
-  "runtime|dermis/(core|surface|dsurf|runtime|deform|asset)/|dermis/dermis\\.h|support/(fixtures|random|wavy_displacement)\\.h")
+  "runtime|dermis/(core|surface|dsurf|runtime|deform|asset)/|dermis/dermis\\.h|support/(fixtures|random|runtime_frames|wavy_displacement)\\.h")
 foreach(rule ${test_rules})
   string(FIND "${rule}" "|" bar)
   string(SUBSTRING "${rule}" 0 ${bar} folder)

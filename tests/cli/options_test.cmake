@@ -6,12 +6,13 @@
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
-set(commands "tessellate;export;animate;render;fit")
+set(commands "tessellate;export;animate;render;fit;pack")
 set(out_tessellate x.obj)
 set(out_export x.glb)
 set(out_animate x.glb)
 set(out_render x.png)
 set(out_fit x.dsurf)
+set(out_pack x.dsurf)
 
 # option -> values to try (both sides of every bound, and junk).
 set(values_--level "0;1;6;128;129;x")

@@ -125,6 +125,32 @@ if(SH AND NOT SANITIZE)
   expect_run(1 "lower --level" ${SH} -c
              "ulimit -v 4000000 && exec '${DERMIS}' tessellate '${WORK}/grid64.obj' --level 64 -o '${OUT}/x.obj'")
 endif()
+# Issue 17: runtime archives, damaged (make_regressions.py ARCHIVE): refused by the reader,
+# naming the file and what is wrong; an archive without its source cannot be exported or
+# repacked with its source.
+expect_run(0 "wrote" ${DERMIS} pack ${FIXTURES}/cylinders.dsurf -o ${WORK}/cyl.runtime.dsurf
+           --quantize-displacements)
+execute_process(COMMAND ${PYTHON3} ${SOURCE}/tests/fuzz/make_regressions.py ${WORK}/archive
+                        ${WORK}/cyl.runtime.dsurf RESULT_VARIABLE code)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "make_regressions.py ARCHIVE failed")
+endif()
+set(A ${WORK}/archive/dsurf)
+expect_run(1 "archive_truncated\\.dsurf: (part [0-9]+: )?truncated or corrupt file" ${DERMIS} validate
+           ${A}/archive_truncated.dsurf)
+expect_run(1 "archive_node_count\\.dsurf: truncated or corrupt file: nodes needs" ${DERMIS}
+           inspect ${A}/archive_node_count.dsurf)
+expect_run(1 "archive_parent_out_of_range\\.dsurf: node 0: parent 100000 out of range"
+           ${DERMIS} validate ${A}/archive_parent_out_of_range.dsurf)
+expect_run(1 "archive_joint_out_of_range\\.dsurf: skin 0: joint node 100000 out of range"
+           ${DERMIS} pack ${A}/archive_joint_out_of_range.dsurf -o ${OUT}/x.dsurf)
+expect_run(1 "cyl\\.runtime\\.dsurf: a runtime archive without its source asset" ${DERMIS}
+           export ${WORK}/cyl.runtime.dsurf -o ${OUT}/x.glb)
+expect_run(1 "--keep-source needs the fitted character" ${DERMIS} pack
+           ${WORK}/cyl.runtime.dsurf -o ${OUT}/x.dsurf --keep-source)
+expect_run(0 "version 4, .*runtime archive +16-bit displacements" ${DERMIS} inspect
+           ${WORK}/cyl.runtime.dsurf)
+
 # 3: a file name that is not UTF-8 (validate --json and fit --report print and write it).
 set(rigged ${DATA}/gltf/RiggedSimple.glb)
 if(EXISTS ${rigged})

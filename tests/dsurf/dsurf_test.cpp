@@ -90,13 +90,13 @@ TEST_CASE("dsurf: the container of every version") {
     Character ch;
     DisplacedSurface s;
     // Versions this build does not know: refused before anything else is read.
-    for (const std::uint32_t v : {0u, 4u, 0xffffffffu}) {
+    for (const std::uint32_t v : {0u, 5u, 0xffffffffu}) {
       std::string other = bytes;
       for (int i = 0; i < 4; ++i) other[8 + i] = static_cast<char>((v >> (8 * i)) & 0xff);
       const Status st = ParseCharacter(other, "v.dsurf", &ch);
       CHECK(st.code() == StatusCode::kUnsupported);
       CHECK(st.message() == "v.dsurf: .dsurf version " + std::to_string(v) +
-                                " is not supported (this build reads 1..3)");
+                                " is not supported (this build reads 1..4)");
       CHECK(ParseDsurf(other, "v.dsurf", &s).code() == StatusCode::kUnsupported);
     }
     // Bad magic, a short header, a damaged byte.

@@ -162,6 +162,34 @@ TEST_CASE("dsurf: a version-1 file of merged lattices still loads and writes bac
   }
   // Written back: version 1, the same bytes.
   CHECK(SerializeDsurf(*s.domain, s.rest_positions.data(), s.displacement.get()) == b.s);
+  // Packed as a runtime archive (version 4): the merged form and its coefficients kept, exactly
+  // in f32, within the quantisation tolerance (2e-6 of the control mesh's diagonal) in 16 bits.
+  Character ch;
+  REQUIRE(ParseCharacter(b.s, "old.dsurf", &ch).ok());
+  Vec3 lo(1e300), hi(-1e300);
+  for (const Vec3& p : s.rest_positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  for (const bool quantize : {false, true}) {
+    RuntimeArchiveOptions options;
+    options.quantize_displacements = quantize;
+    Character packed;
+    const Status ps =
+        ParseCharacter(SerializeRuntimeArchive(ch, options), "old.runtime.dsurf", &packed);
+    INFO(ps.message());
+    REQUIRE(ps.ok());
+    const BsplineDisplacementData& in = s.displacement->data();
+    const BsplineDisplacementData& out = packed.parts[0].surface.displacement->data();
+    CHECK(out.form == BsplineLevelForm::kMerged);
+    CHECK(out.num_levels == in.num_levels);
+    CHECK(out.offsets == in.offsets);
+    REQUIRE(out.values.size() == in.values.size());
+    for (std::size_t i = 0; i < in.values.size(); ++i) {
+      CHECK(std::abs(out.values[i] - in.values[i]) <=
+            (quantize ? 2e-6 * glm::length(hi - lo) * 1.01 : 0.0));
+    }
+  }
 }
 
 TEST_CASE("dsurf: version 3 stores sparse levels and round trips bit-exactly", "[dsurf]") {
@@ -191,8 +219,7 @@ TEST_CASE("dsurf: version 3 stores sparse levels and round trips bit-exactly", "
   auto disp = BsplineDisplacement::Create(d, nv, &st);
   INFO(st.message());
   REQUIRE(disp);
-  const std::string bytes =
-      SerializeDsurf(cs.domain, cs.positions.data(), disp.get(), 12345);
+  const std::string bytes = SerializeDsurf(cs.domain, cs.positions.data(), disp.get(), 12345);
   std::uint32_t version = 0;
   std::memcpy(&version, bytes.data() + 8, 4);
   CHECK(version == 3);

@@ -5,7 +5,10 @@ original reproducers live outside the repository). Used by the CLI test cli.reli
 --replay). Every input must end cleanly: exit 1 with a message naming the file and the problem,
 or a correct result.
 
-Usage: make_regressions.py OUT_DIR   (writes OUT_DIR/<harness>/<name>)
+Usage: make_regressions.py OUT_DIR [ARCHIVE]   (writes OUT_DIR/<harness>/<name>)
+
+With ARCHIVE (a runtime archive, `dermis pack`), also damaged copies of it (issue 17): cut in
+the middle, a node parent and a skin joint out of range, a node count larger than the file; each resealed with a correct checksum so that the body's own checks must refuse it.
 """
 import base64
 import json
@@ -58,10 +61,53 @@ def skinned_triangle_doc(nodes):
             'buffers': [{'byteLength': len(data), 'uri': buffer_uri(data)}]}
 
 
+def fnv1a64(data):
+    h = 0xcbf29ce484222325
+    for b in data:
+        h = ((h ^ b) * 0x100000001b3) & 0xffffffffffffffff
+    return h
+
+
+def reseal(body):
+    """A .dsurf body (everything before the checksum) with its FNV-1a 64 checksum appended."""
+    return body + struct.pack('<Q', fnv1a64(body))
+
+
+def archive_regressions(out, path):
+    with open(path, 'rb') as f:
+        data = f.read()
+    assert data[:8] == b'DSURF\r\n\x1a' and struct.unpack('<I', data[8:12])[0] == 4, path
+    body = bytearray(data[:-8])
+    write(out, 'dsurf', 'archive_truncated.dsurf', reseal(bytes(body[:len(body) // 2])))
+    # After the header (16 bytes): flags u32, 4 x f64 errors, node count u32 at 52, node 0's
+    # parent i32 at 56.
+    bad = bytearray(body)
+    bad[52:56] = struct.pack('<I', 0x000fffff)
+    write(out, 'dsurf', 'archive_node_count.dsurf', reseal(bytes(bad)))
+    bad = bytearray(body)
+    bad[56:60] = struct.pack('<i', 100000)
+    write(out, 'dsurf', 'archive_parent_out_of_range.dsurf', reseal(bytes(bad)))
+    # Skin 0's first joint: after the nodes (i32 parent, u64 name length, name) and the skin
+    # count u32 and its joint count u32.
+    (nodes,) = struct.unpack('<I', body[52:56])
+    at = 56
+    for _ in range(nodes):
+        (length,) = struct.unpack('<Q', body[at + 4:at + 12])
+        at += 12 + length
+    (skins,) = struct.unpack('<I', body[at:at + 4])
+    assert skins > 0, path
+    bad = bytearray(body)
+    bad[at + 8:at + 12] = struct.pack('<i', 100000)
+    write(out, 'dsurf', 'archive_joint_out_of_range.dsurf', reseal(bytes(bad)))
+
+
 def main():
-    if len(sys.argv) != 2:
+    if len(sys.argv) not in (2, 3):
         sys.exit(__doc__)
     out = sys.argv[1]
+    if len(sys.argv) == 3:
+        archive_regressions(out, sys.argv[2])
+        return
     tri = 'v 0 0 0\nv 1 0 0\nv 0 1 0\n'
     # 8: index -2^63 (negating it overflowed), and the smallest relative index that fits.
     write(out, 'obj', 'llong_min_index.obj', tri + 'f 1 2 -9223372036854775808\n')

@@ -85,4 +85,7 @@ void AddValidateCommand(CLI::App* app, std::function<int()>* run);
 /// Registers `inspect`.
 void AddInspectCommand(CLI::App* app, std::function<int()>* run);
 
+/// Registers `pack`.
+void AddPackCommand(CLI::App* app, std::function<int()>* run);
+
 }  // namespace dermis::cli

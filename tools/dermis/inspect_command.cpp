@@ -254,6 +254,34 @@ Json DescribeAsset(const Asset& asset) {
 // ---------------------------------------------------------------------------------------------
 // Displaced surfaces (.dsurf, also embedded in .glb as DERMIS_displaced_surface).
 
+/// The bytes of each section of a .dsurf file as its reader found them, and what a runtime
+/// archive's header records (docs/file-format.md).
+Json DescribeLayout(const DsurfFileInfo& info, const Character& ch) {
+  Json j;
+  j["version"] = info.version;
+  Json sections = Json::array();
+  for (const auto& section : info.sections) {
+    Json e;
+    e["section"] = section.first;
+    e["bytes"] = section.second;
+    sections.push_back(e);
+  }
+  j["sections"] = sections;
+  if (info.version == kRuntimeArchiveVersion) {
+    Json a;
+    a["quantized_displacements"] = info.archive.quantize_displacements;
+    a["source_kept"] = info.archive.keep_source;
+    a["skins"] = ch.asset.skins.size();
+    const RuntimeArchiveError& e = info.archive_error;
+    a["diagonal"] = e.diagonal;
+    a["level8_max_error"] = e.level8_max;
+    a["level8_mean_error"] = e.level8_mean;
+    a["bound_max_error"] = e.bound_max;
+    j["archive"] = a;
+  }
+  return j;
+}
+
 /// Parses .dsurf bytes (a file, or the extension of a .glb). A plain surface (version 1) fills
 /// report["surface"]; a character (version 2) fills report["character"] and, when
 /// `with_asset` (a .dsurf file rather than a .glb that already described its asset),
@@ -262,14 +290,16 @@ Status InspectDsurfBytes(std::string_view bytes, const std::string& name, bool w
                          int memory_level, Json* report) {
   Character ch;
   std::uint32_t version = 0;
-  const Status s = ParseCharacter(bytes, name, &ch, &version);
+  DsurfFileInfo info;
+  const Status s = ParseCharacter(bytes, name, &ch, &version, &info);
   if (!s.ok()) return s;
   if (IsSurfaceDsurfVersion(version)) {
     (*report)["surface"] = DescribeSurface(ch.parts[0].surface);
   } else {
-    if (with_asset) (*report)["asset"] = DescribeAsset(ch.asset);
+    if (with_asset && !ch.source_stripped) (*report)["asset"] = DescribeAsset(ch.asset);
     (*report)["character"] = DescribeCharacter(ch);
   }
+  (*report)["layout"] = DescribeLayout(info, ch);
   return DescribeRuntimeMemory(std::move(ch), memory_level, &(*report)["runtime_memory"]);
 }
 
@@ -431,9 +461,13 @@ void PrintCharacter(const Json& c) {
          d.is_null() ? std::string("no displacement")
                      : Str(d["max_levels"]) + " levels, " + Str(d["coefficients"]) +
                            " coefficients (" + Str(f["coefficients_per_point"]) + " per point)",
-         "E1 mean " + Str(f["e1_mean"]) + " (" + Str(f["e1_mean_percent"]) + " %), max " +
-             Str(f["e1_max"]) + " (" + Str(f["e1_max_percent"]) + " %)",
-         "Hausdorff " + Str(f["hausdorff"]) + " (" + Str(f["hausdorff_percent"]) + " %)"});
+         f["points"].get<std::int64_t>() == 0
+             ? std::string("fit summary not in this file")
+             : "E1 mean " + Str(f["e1_mean"]) + " (" + Str(f["e1_mean_percent"]) + " %), max " +
+                   Str(f["e1_max"]) + " (" + Str(f["e1_max_percent"]) + " %)",
+         f["points"].get<std::int64_t>() == 0
+             ? std::string()
+             : "Hausdorff " + Str(f["hausdorff"]) + " (" + Str(f["hausdorff_percent"]) + " %)"});
   }
   Table(rows);
   rows.clear();
@@ -442,6 +476,28 @@ void PrintCharacter(const Json& c) {
                     Str(u["vertices"]) + " vertices", "unfitted: " + Str(u["reason"])});
   }
   Table(rows);
+}
+
+void PrintLayout(const Json& l) {
+  std::uint64_t total = 0;
+  for (const Json& e : l["sections"]) total += e["bytes"].get<std::uint64_t>();
+  Row("layout", "version " + Str(l["version"]) + ", " + std::to_string(total) + " bytes");
+  std::vector<std::vector<std::string>> rows;
+  for (const Json& e : l["sections"]) {
+    char percent[32];
+    std::snprintf(percent, sizeof(percent), "%.1f %%",
+                  total > 0 ? 100.0 * e["bytes"].get<double>() / static_cast<double>(total) : 0.0);
+    rows.push_back({Str(e["section"]), Str(e["bytes"]) + " bytes", percent});
+  }
+  Table(rows);
+  if (!l.contains("archive")) return;
+  const Json& a = l["archive"];
+  Row("runtime archive",
+      std::string(a["quantized_displacements"].get<bool>() ? "16-bit" : "f32") +
+          " displacements, source " + (a["source_kept"].get<bool>() ? "kept" : "not kept") +
+          "; error at the rest pose over the diagonal " + Str(a["diagonal"]) + ": level 8 max " +
+          Str(a["level8_max_error"]) + ", mean " + Str(a["level8_mean_error"]) +
+          ", bound vertices max " + Str(a["bound_max_error"]));
 }
 
 void PrintRuntimeMemory(const Json& m) {
@@ -478,6 +534,7 @@ void PrintText(const Json& report) {
     if (embedded) std::printf("%s\n", kDsurfGltfExtension);
     PrintCharacter(report["character"]);
   }
+  if (report.contains("layout")) PrintLayout(report["layout"]);
   if (report.contains("runtime_memory")) PrintRuntimeMemory(report["runtime_memory"]);
 }
 

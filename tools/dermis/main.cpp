@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   dermis::cli::AddExportCommand(&app, &run);
   dermis::cli::AddFitCommand(&app, &run);
   dermis::cli::AddInspectCommand(&app, &run);
+  dermis::cli::AddPackCommand(&app, &run);
   dermis::cli::AddRenderCommand(&app, &run);
   dermis::cli::AddValidateCommand(&app, &run);
   dermis::cli::AddTessellateCommand(&app, &run);

@@ -127,12 +127,15 @@ int RunValidate(const ValidateArgs& a) {
   Khronos khronos;
   if (s.ok()) {
     if (const std::uint32_t version = DsurfFileVersion(bytes); version != 0) {
-      kind = IsSurfaceDsurfVersion(version) ? "dsurf surface" : "dsurf character";
+      kind = IsSurfaceDsurfVersion(version)      ? "dsurf surface"
+             : version == kRuntimeArchiveVersion ? "dsurf runtime archive"
+                                                 : "dsurf character";
       // The same reader and checks as every consumer: the parse (which builds each domain and
       // checks every offset and index), the asset, and the runtime character the C API loads.
       Character ch;
       s = ParseCharacter(bytes, a.input, &ch);
-      if (s.ok() && !IsSurfaceDsurfVersion(version)) s = ValidateAsset(ch.asset);
+      if (s.ok() && !IsSurfaceDsurfVersion(version) && !ch.source_stripped)
+        s = ValidateAsset(ch.asset);
       if (s.ok()) {
         std::unique_ptr<RuntimeCharacter> runtime;
         s = RuntimeCharacter::FromBytes(bytes, a.input, &runtime);

@@ -83,6 +83,9 @@ class ByteReader {
   std::uint8_t U8(const char* what) {
     return Need(1, 1, what) ? static_cast<std::uint8_t>(Raw(1)) : 0;
   }
+  std::uint16_t U16(const char* what) {
+    return Need(1, 2, what) ? static_cast<std::uint16_t>(Raw(2)) : 0;
+  }
   std::uint32_t U32(const char* what) {
     return Need(1, 4, what) ? static_cast<std::uint32_t>(Raw(4)) : 0;
   }

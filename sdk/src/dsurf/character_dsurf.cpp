@@ -11,7 +11,7 @@
 #include "dsurf/dsurf_container.h"
 
 namespace dermis {
-namespace {
+namespace dsurf {
 
 void WriteSummary(const PartFitSummary& f, ByteWriter* w) {
   w->I64(f.points);
@@ -41,7 +41,18 @@ PartFitSummary ReadSummary(ByteReader* r) {
   return f;
 }
 
-}  // namespace
+void WriteUnfitted(const std::vector<UnfittedPart>& unfitted, ByteWriter* w) {
+  w->U32(static_cast<std::uint32_t>(unfitted.size()));
+  for (const UnfittedPart& u : unfitted) {
+    w->I32(u.mesh);
+    w->I32(u.component);
+    w->I64(u.vertices);
+    w->I64(u.triangles);
+    w->Str(u.reason);
+  }
+}
+
+}  // namespace dsurf
 
 std::string SerializeCharacter(const Character& ch) {
   ByteWriter w;
@@ -59,7 +70,7 @@ std::string SerializeCharacter(const Character& ch) {
       for (int k = 0; k < 4; ++k) w.U32(p.control_joints[i][k]);
       for (int k = 0; k < 4; ++k) w.F32(p.control_weights[i][k]);
     }
-    WriteSummary(p.fit, &w);
+    dsurf::WriteSummary(p.fit, &w);
   }
   w.U32(static_cast<std::uint32_t>(ch.bindings.size()));
   for (const auto& mesh : ch.bindings) {
@@ -74,14 +85,7 @@ std::string SerializeCharacter(const Character& ch) {
       }
     }
   }
-  w.U32(static_cast<std::uint32_t>(ch.unfitted.size()));
-  for (const UnfittedPart& u : ch.unfitted) {
-    w.I32(u.mesh);
-    w.I32(u.component);
-    w.I64(u.vertices);
-    w.I64(u.triangles);
-    w.Str(u.reason);
-  }
+  dsurf::WriteUnfitted(ch.unfitted, &w);
   return dsurf::Finish(&w);
 }
 
@@ -89,19 +93,23 @@ namespace {
 
 // Part i: its mesh, component, skin, surface (a complete version-1 .dsurf), the influences of
 // its control vertices and its fit summary. Errors name the part.
-Status ReadPart(ByteReader* reader, const Asset& asset, std::uint32_t i, CharacterPart* p) {
+Status ReadPart(ByteReader* reader, const Asset& asset, std::uint32_t i, CharacterPart* p,
+                DsurfFileInfo* info) {
   ByteReader& r = *reader;
+  dsurf::SectionMarks marks(reader, info);
   p->mesh = r.I32("part mesh");
   p->component = r.I32("part component");
   p->skin = r.I32("part skin");
   const std::string surface = r.Str("part surface");
   if (!r.ok()) return r.status();
+  if (info != nullptr) info->Add("header", 12 + 8);  // indices, the surface's length
+  marks.Close(nullptr);
   const std::string where = r.name() + ": part " + std::to_string(i);
   if (p->mesh < kInvalidIndex || p->mesh >= static_cast<Index>(asset.meshes.size()) ||
       p->skin < kInvalidIndex || p->skin >= static_cast<Index>(asset.skins.size())) {
     return Status::InvalidInput(where + ": mesh or skin index out of range");
   }
-  const Status s = ParseDsurf(surface, where, &p->surface);
+  const Status s = dsurf::ParseNestedSurface(surface, where, &p->surface, info);
   if (!s.ok()) return s;
   const std::uint64_t n = r.U64("control influence count");
   if (!r.Need(n, 32, "control influences")) return r.status();
@@ -128,7 +136,9 @@ Status ReadPart(ByteReader* reader, const Asset& asset, std::uint32_t i, Charact
       p->control_weights[k][c] = x;
     }
   }
-  p->fit = ReadSummary(&r);
+  marks.Close("skin influences");
+  p->fit = dsurf::ReadSummary(&r);
+  marks.Close("fit summaries");
   return r.status();
 }
 
@@ -173,6 +183,10 @@ Status ReadBindings(ByteReader* reader, const Character& ch,
   return r.status();
 }
 
+}  // namespace
+
+namespace dsurf {
+
 // The components left as ordinary meshes, and why.
 Status ReadUnfitted(ByteReader* reader, std::vector<UnfittedPart>* unfitted) {
   ByteReader& r = *reader;
@@ -191,28 +205,31 @@ Status ReadUnfitted(ByteReader* reader, std::vector<UnfittedPart>* unfitted) {
   return r.status();
 }
 
-}  // namespace
-
-namespace dsurf {
-
-Status ReadCharacterBody(ByteReader* reader, Character* out) {
+Status ReadCharacterBody(ByteReader* reader, Character* out, DsurfFileInfo* info) {
   ByteReader& r = *reader;
+  SectionMarks marks(reader, info);
+  if (info != nullptr) info->Add("header", kHeaderBytes + 8);  // header and checksum
   Character ch;
   const std::string asset_bytes = r.Str("asset");
   if (!r.ok()) return r.status();
+  marks.Close("source asset");
   Status s = ParseAsset(asset_bytes, r.name(), &ch.asset);
   if (!s.ok()) return s;
   const std::uint32_t nparts = r.U32("part count");
+  marks.Close("header");
   // A part takes at least 12 + 8 + 8 + 84 bytes.
   if (!r.Need(nparts, 112, "parts")) return r.status();
   for (std::uint32_t i = 0; i < nparts; ++i) {
     CharacterPart p;
-    s = ReadPart(&r, ch.asset, i, &p);
+    s = ReadPart(&r, ch.asset, i, &p, info);
     if (!s.ok()) return s;
     ch.parts.push_back(std::move(p));
   }
+  marks.Close(nullptr);  // counted by ReadPart
   s = ReadBindings(&r, ch, &ch.bindings);
+  marks.Close("vertex bindings");
   if (s.ok()) s = ReadUnfitted(&r, &ch.unfitted);
+  marks.Close("unfitted parts");
   if (s.ok()) s = CheckEnd(r);
   if (!s.ok()) return s;
   *out = std::move(ch);

@@ -11,24 +11,32 @@
 namespace dermis {
 
 Status ParseCharacter(std::string_view bytes, const std::string& name, Character* out,
-                      std::uint32_t* version) {
+                      std::uint32_t* version, DsurfFileInfo* info) {
   dsurf::Contents file;
   Status s = dsurf::Open(bytes, name, &file);
   if (!s.ok()) return s;
   ByteReader r = dsurf::BodyReader(file, name);
   Character ch;
+  DsurfFileInfo layout;
+  layout.version = file.version;
+  DsurfFileInfo* sections = info != nullptr ? &layout : nullptr;
   if (IsSurfaceDsurfVersion(file.version)) {
     CharacterPart part;
-    s = dsurf::ReadSurfaceBody(&r, file.version, &part.surface);
+    layout.Add("header", dsurf::kHeaderBytes + 8);  // header and checksum
+    s = dsurf::ReadSurfaceBody(&r, file.version, &part.surface, sections);
     if (!s.ok()) return s;
     ch.asset.source = name;
     ch.parts.push_back(std::move(part));
+  } else if (file.version == kCharacterDsurfVersion) {
+    s = dsurf::ReadCharacterBody(&r, &ch, sections);
+    if (!s.ok()) return s;
   } else {
-    s = dsurf::ReadCharacterBody(&r, &ch);
+    s = dsurf::ReadArchiveBody(&r, &ch, &layout);
     if (!s.ok()) return s;
   }
   *out = std::move(ch);
   if (version != nullptr) *version = file.version;
+  if (info != nullptr) *info = std::move(layout);
   return Status::Ok();
 }
 

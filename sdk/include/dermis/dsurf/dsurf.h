@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "dermis/core/status.h"
@@ -30,8 +31,13 @@ constexpr std::uint32_t kCharacterDsurfVersion = 2;
 /// Version of .dsurf files that hold one displaced surface with sparse per-level displacement
 /// corrections (BsplineLevelForm::kAdditive).
 constexpr std::uint32_t kSparseDsurfVersion = 3;
+/// Version of .dsurf files that hold a runtime archive: a character packed for the runtime
+/// (BuildRuntimeArchive(), offline/character/runtime_archive.h): the rig, compact control
+/// meshes, operators, displacement lattices (optionally 16-bit), skin influences and vertex
+/// bindings, the source asset only if asked.
+constexpr std::uint32_t kRuntimeArchiveVersion = 4;
 /// The newest version; readers accept 1 .. kLatestDsurfVersion.
-constexpr std::uint32_t kLatestDsurfVersion = 3;
+constexpr std::uint32_t kLatestDsurfVersion = 4;
 
 /// Whether a .dsurf version holds a plain surface (1, 3) rather than a character (2).
 constexpr bool IsSurfaceDsurfVersion(std::uint32_t version) {
@@ -39,6 +45,40 @@ constexpr bool IsSurfaceDsurfVersion(std::uint32_t version) {
 }
 
 struct Character;  // runtime/character.h
+
+/// How a runtime archive (version 4) is packed.
+struct RuntimeArchiveOptions {
+  /// Store each displacement coefficient as 16 bits: per chart and level an f32 offset and
+  /// scale, then one u16 per coefficient (error at most half a step of that range).
+  bool quantize_displacements = false;
+  /// Keep the whole source asset (meshes, materials, images, clips) and the fit summaries, so
+  /// that offline commands (export, animate, render) can use the archive; by default only the
+  /// rig (joint names, parents, inverse bind matrices) and the primitives' vertex counts and
+  /// triangle indices are kept.
+  bool keep_source = false;
+};
+
+/// What the header of a runtime archive records: the error of the archive against the
+/// character it was built from, as the builder measured it (0 if not measured), relative to
+/// the diagonal of that character's level-8 rest output.
+struct RuntimeArchiveError {
+  double level8_max = 0.0, level8_mean = 0.0;  ///< Level-8 output, over the diagonal.
+  double bound_max = 0.0;                      ///< Bound vertices, over the diagonal.
+  double diagonal = 0.0;                       ///< Model units.
+};
+
+/// The byte layout of a .dsurf file, as its reader found it (for `dermis inspect`).
+struct DsurfFileInfo {
+  std::uint32_t version = 0;
+  /// Bytes per section, in the order first met; each byte of the file is in exactly one
+  /// section ("header" holds magics, versions, flags, counts and checksums).
+  std::vector<std::pair<std::string, std::uint64_t>> sections;
+  /// Version 4: how it was packed and the error its header records.
+  RuntimeArchiveOptions archive;
+  RuntimeArchiveError archive_error;
+  /// Adds `bytes` to section `name`.
+  void Add(const std::string& name, std::uint64_t bytes);
+};
 
 /// A displaced surface as loaded from (or saved to) a .dsurf file.
 struct DisplacedSurface {
@@ -74,8 +114,17 @@ std::string SerializeCharacter(const Character& character);
 /// asset's source is `name`). `version`, if not null, receives the file's version. Errors name
 /// `name` and the part of the file at fault (kUnsupported for a version this build does not
 /// know).
+/// A runtime archive (version 4) reads as the character it was packed from, less what it
+/// left out (Character::source_stripped). `info`, if not null, receives the byte layout.
 Status ParseCharacter(std::string_view bytes, const std::string& name, Character* out,
-                      std::uint32_t* version = nullptr);
+                      std::uint32_t* version = nullptr, DsurfFileInfo* info = nullptr);
+
+/// Serialises a character as a version-4 runtime archive (docs/file-format.md, "Runtime
+/// archives"): deterministic bytes; `error` is recorded in the header as given. The offline
+/// builder (BuildRuntimeArchive) measures the error and calls this.
+std::string SerializeRuntimeArchive(const Character& character,
+                                    const RuntimeArchiveOptions& options,
+                                    const RuntimeArchiveError& error = {});
 
 /// Reads a .dsurf file of any version once and parses it as ParseCharacter() does; `bytes`,
 /// if not null, receives the file's bytes.

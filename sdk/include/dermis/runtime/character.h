@@ -67,6 +67,12 @@ struct Character {
   /// bindings[mesh][primitive][vertex]: one per vertex of every primitive of every mesh.
   std::vector<std::vector<std::vector<VertexBinding>>> bindings;
   std::vector<UnfittedPart> unfitted;
+  /// True when read from a runtime archive packed without its source asset
+  /// (RuntimeArchiveOptions::keep_source false): `asset` then holds only the nodes' names and
+  /// parents, the skins, and each primitive's mode and indices (no vertex attributes, materials,
+  /// images or clips), and the fit summaries are zero. The runtime needs nothing more; offline
+  /// posing and export refuse such a character.
+  bool source_stripped = false;
 };
 
 /// The rig of skin `skin` of `asset` as the deformers see it: joint j's parent is the index,

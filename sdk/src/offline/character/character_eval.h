@@ -17,6 +17,16 @@
 
 namespace dermis::character {
 
+/// Export and posing need the source asset's vertices, skins and clips: refuse a character read
+/// from a runtime archive packed without them (Character::source_stripped).
+inline Status RequireSourceAsset(const Character& ch) {
+  if (!ch.source_stripped) return Status::Ok();
+  return Status::InvalidInput(ch.asset.source +
+                              ": a runtime archive without its source asset (meshes, clips); "
+                              "export, animate and render need the fitted .dsurf or an archive "
+                              "packed with --keep-source");
+}
+
 /// What evaluating one part needs: its rest patches and the displacement to use.
 struct PartEval {
   std::vector<LocalPatch> patches;  ///< Fitted to the rest control vertices.

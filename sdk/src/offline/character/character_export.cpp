@@ -117,6 +117,7 @@ Status MakePartEval(const Character& ch, Index part_index, int levels, PartEval*
 }  // namespace character
 
 Status BuildBoundAsset(const Character& ch, const CharacterExportOptions& options, Asset* out) {
+  if (Status s = character::RequireSourceAsset(ch); !s.ok()) return s;
   if (ch.asset.meshes.empty()) {
     return Status::InvalidInput(
         ch.asset.source + ": has no original meshes to bind (a plain surface); use --mode lod");
@@ -324,6 +325,7 @@ void TransferFromOriginal(const Character& ch, std::size_t k, const std::vector<
 Status BuildLodAssetWithSources(const Character& ch, const CharacterExportOptions& options,
                                 Asset* out, std::vector<std::string>* notes,
                                 SurfaceSources* sources) {
+  if (Status s = RequireSourceAsset(ch); !s.ok()) return s;
   if (options.level < 1 || options.level > 64) {
     return Status::InvalidInput("tessellation level must be in 1..64");
   }

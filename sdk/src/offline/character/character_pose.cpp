@@ -189,6 +189,7 @@ Status MakePartInstance(const Character& ch, Index k, Index skin, const SkinRig&
 
 Status CharacterPoser::Build(const Character& ch, const CharacterPoseOptions& options,
                              CharacterPoser* out) {
+  if (Status s = character::RequireSourceAsset(ch); !s.ok()) return s;
   auto st = std::make_unique<State>();
   st->character = &ch;
   st->options = options;
