@@ -592,10 +592,44 @@ int XmlDepth(std::string_view text, int limit) {
   return deepest;
 }
 
+// The first COLLADA index list (<p>, <v>, <vcount>, <h>, <int_array>) whose text holds a
+// character that is not part of an integer (digits, signs, white space), or an empty view.
+// Assimp 5.2's COLLADA reader parses these lists with an integer reader that does not stop at
+// such a character: one stray byte in a 4 KB file made it allocate without bound (16 GB and a
+// bad_alloc after 77 s; found by fuzz_assimp, docs/reliability.md). Linear in the file.
+std::string_view BadColladaIndexList(std::string_view text) {
+  static const std::string_view kLists[] = {"p", "v", "vcount", "h", "int_array"};
+  for (std::size_t i = text.find('<'); i != std::string_view::npos; i = text.find('<', i + 1)) {
+    std::size_t e = i + 1;
+    while (e < text.size() && text[e] != '>' && text[e] != '/' && text[e] != ' ' &&
+           text[e] != '\t' && text[e] != '\n' && text[e] != '\r') {
+      ++e;
+    }
+    const std::string_view name = text.substr(i + 1, e - i - 1);
+    bool list = false;
+    for (const std::string_view l : kLists) list = list || name == l;
+    if (!list) continue;
+    const std::size_t open_end = text.find('>', e);
+    if (open_end == std::string_view::npos || text[open_end - 1] == '/') continue;
+    const std::size_t close = text.find('<', open_end);
+    const std::string_view body = text.substr(
+        open_end + 1, (close == std::string_view::npos ? text.size() : close) - open_end - 1);
+    for (const char c : body) {
+      const bool ok = (c >= '0' && c <= '9') || c == '-' || c == '+' || c == ' ' || c == '\t' ||
+                      c == '\n' || c == '\r';
+      if (!ok) return name;
+    }
+    if (close == std::string_view::npos) break;
+    i = close - 1;
+  }
+  return {};
+}
+
 // What Assimp is not given: files of an extension it does not list (it would try every
 // importer on their content, and Assimp 5.2 leaks memory in several of them on bad input),
 // 3MF (Assimp 5.2's 3MF importer leaks on failed imports), and XML nested deeper than
-// limits::kMaxXmlDepth (its Collada reader recurses per node and overflows the stack).
+// limits::kMaxXmlDepth (its Collada reader recurses per node and overflows the stack), and
+// COLLADA index lists with a character that is not part of an integer (BadColladaIndexList).
 Status CheckBeforeAssimp(const std::string& path, const std::string& ext,
                          const Assimp::Importer& importer) {
   if (ext.empty() || !importer.IsExtensionSupported(ext)) {
@@ -620,6 +654,13 @@ Status CheckBeforeAssimp(const std::string& path, const std::string& ext,
   if (xml && XmlDepth(bytes, limits::kMaxXmlDepth) > limits::kMaxXmlDepth) {
     return Status::InvalidInput(path + ": XML elements nested deeper than " +
                                 std::to_string(limits::kMaxXmlDepth) + " levels: refused");
+  }
+  if (ext == ".dae" || head.find("<collada") != std::string::npos) {
+    const std::string_view list = BadColladaIndexList(bytes);
+    if (!list.empty()) {
+      return Status::InvalidInput(path + ": COLLADA <" + std::string(list) +
+                                  "> holds a character that is not part of an integer: refused");
+    }
   }
   return Status::Ok();
 }

@@ -162,6 +162,19 @@ def main():
     # 14: bytes of no known format (first byte 9: .bin): refused before Assimp guesses.
     write(out, 'assimp', 'unknown_format.bin', b'\x09' + b'\xae' * 80)
     write(out, 'assimp', 'stl_solid.bin', b'\x09' + b'\x02solid t\n facet normal 0 0 1\n')
+    # Found by fuzz_assimp (2026-12-02): a stray byte inside a Collada <p> list made Assimp
+    # 5.2's integer reader allocate without bound; refused before Assimp.
+    write(out, 'assimp', 'stray_byte_in_p.dae', b'\x00' + (
+        '<?xml version="1.0"?>\n<COLLADA version="1.4.1"><asset><up_axis>Y_UP</up_axis></asset>'
+        '<library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" '
+        'count="9">0 0 0 1 0 0 0 1 0</float_array><technique_common><accessor source="#pa" '
+        'count="3" stride="3"><param name="X" type="float"/><param name="Y" type="float"/>'
+        '<param name="Z" type="float"/></accessor></technique_common></source><vertices id="v">'
+        '<input semantic="POSITION" source="#p"/></vertices><triangles count="1"><input '
+        'semantic="VERTEX" source="#v" offset="0"/><p>0 1x 2</p></triangles></mesh></geometry>'
+        '</library_geometries><library_visual_scenes><visual_scene id="s"><node id="n">'
+        '<instance_geometry url="#g"/></node></visual_scene></library_visual_scenes><scene>'
+        '<instance_visual_scene url="#s"/></scene></COLLADA>\n').encode())
 
 
 if __name__ == '__main__':

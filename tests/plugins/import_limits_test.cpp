@@ -173,3 +173,36 @@ TEST_CASE("assimp limits: deep XML, unknown formats and 3MF are refused before A
   s = ImportAssimp(dir.File("fine.dae"), &asset);
   CHECK(s.message().find("nested deeper") == std::string::npos);
 }
+
+TEST_CASE("assimp limits: a COLLADA index list with a non-integer character is refused") {
+  // fuzz_assimp found one stray byte in a <p> list making Assimp 5.2 allocate without bound.
+  test::TempDir dir;
+  const auto triangle = [](const std::string& p) {
+    return std::string(R"(<?xml version="1.0"?><COLLADA version="1.4.1">)") +
+           R"(<asset><up_axis>Y_UP</up_axis></asset><library_geometries><geometry id="g"><mesh>)"
+           R"(<source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array>)"
+           R"(<technique_common><accessor source="#pa" count="3" stride="3"><param name="X" )"
+           R"(type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>)"
+           R"(</accessor></technique_common></source><vertices id="v"><input )"
+           R"(semantic="POSITION" source="#p"/></vertices><triangles count="1"><input )"
+           R"(semantic="VERTEX" source="#v" offset="0"/><p>)" +
+           p +
+           R"(</p></triangles></mesh></geometry></library_geometries><library_visual_scenes>)"
+           R"(<visual_scene id="s"><node id="n"><instance_geometry url="#g"/></node>)"
+           R"(</visual_scene></library_visual_scenes><scene><instance_visual_scene url="#s"/>)"
+           R"(</scene></COLLADA>)";
+  };
+  test::WriteFile(dir.File("good.dae"), triangle("0 1\n2"));
+  Asset asset;
+  Status s = ImportAssimp(dir.File("good.dae"), &asset);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  CHECK(asset.meshes.size() == 1);
+  for (const char* bad : {"0 1x 2", "0 1 \xcf\xc9", "0 1.5 2"}) {
+    test::WriteFile(dir.File("bad.dae"), triangle(bad));
+    s = ImportAssimp(dir.File("bad.dae"), &asset);
+    CHECK(s.message() == dir.File("bad.dae") +
+                             ": COLLADA <p> holds a character that is not part of an integer: "
+                             "refused");
+  }
+}
