@@ -176,7 +176,8 @@ struct Settings {
   bool detail = false, mba = false;
   bool where = false;             ///< --where: the largest character distances and what is there.
   bool no_crease_remesh = false;  ///< --no-crease-remesh: the remesh ignores creases.
-  int compare_simplified = -1;    ///< --compare-simplified 0|1 (-1: the default).
+  int compare_without_creases = -1;  ///< --compare-without-creases 0|1 (-1: the default).
+  int compare_simplified = -1;       ///< --compare-simplified 0|1 (-1: the default).
   ControlMeshMethod method = ControlMeshMethod::kRemesh;
   double density = -1.0;          // -1: FitOptions' default
   int control_fit = -1;           // -1: FitOptions' default
@@ -564,6 +565,8 @@ int RunCharacters(const Settings& st) {
     if (st.crease_angle >= 0.0) options.crease_angle = st.crease_angle;
     if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
     if (st.no_crease_remesh) options.remesh_creases = false;
+    if (st.compare_without_creases >= 0)
+      options.compare_without_creases = st.compare_without_creases != 0;
     if (st.compare_simplified >= 0) options.compare_simplified = st.compare_simplified != 0;
     Character ch;
     CharacterFitReport report;
@@ -679,6 +682,8 @@ int main(int argc, char** argv) {
       st.node_weight = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--budget") == 0 && i + 1 < argc) {
       st.budget = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--compare-without-creases") == 0 && i + 1 < argc) {
+      st.compare_without_creases = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--no-crease-remesh") == 0) {
       st.no_crease_remesh = true;
     } else if (std::strcmp(argv[i], "--compare-simplified") == 0 && i + 1 < argc) {

@@ -296,7 +296,11 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
   // With the simplification's fit to compare, each fit is half of the component's work.
   const bool compare =
       options.compare_simplified && fo.control_method == ControlMeshMethod::kRemesh;
-  const double share = compare ? 0.5 : 1.0;
+  // With creases kept, the plain remesh's fit is compared too (each fit a share of the work;
+  // a part without creases is fitted once and its bar jumps over the second share).
+  const bool plain = options.remesh_creases && options.compare_without_creases &&
+                     fo.control_method == ControlMeshMethod::kRemesh;
+  const double share = 1.0 / ((compare ? 2.0 : 1.0) * (plain ? 2.0 : 1.0));
   if (part_progress) {
     fo.progress = [&](const char* st, std::size_t done, std::size_t total) {
       part_progress(
@@ -305,6 +309,38 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
   }
   const Status s = FitSurface(input, fo, fitted, fr);
   if (!s.ok()) return s.message();
+  if (plain && fr->control_mesh.method == "remesh" &&
+      fr->control_mesh.quality.crease_edges_kept > 0) {
+    // Keeping every crease as control edges sharpens low-poly, hard-edged parts but makes
+    // denser control meshes that can fit organic parts worse (docs/characters.md, "Creases or
+    // not"): fit the plain remesh too and keep the crease-aware one only where its two-sided
+    // Hausdorff distance is clearly lower.
+    FitOptions po = fo;
+    po.remesh.crease_angle_deg = 0.0;
+    po.progress = nullptr;
+    if (part_progress) {
+      po.progress = [&](const char* st, std::size_t done, std::size_t total) {
+        part_progress(
+            std::string(st) + ", control mesh without creases",
+            share +
+                (total > 0 ? share * static_cast<double>(done) / static_cast<double>(total) : 0.0));
+      };
+    }
+    FittedSurface alt;
+    FitReport alt_report;
+    if (FitSurface(input, po, &alt, &alt_report).ok() &&
+        !(fr->error.hausdorff < options.crease_margin * alt_report.error.hausdorff)) {
+      char note[200];
+      std::snprintf(note, sizeof(note),
+                    "the control mesh without creases was kept: Hausdorff %.3g against %.3g "
+                    "keeping %d crease edges (of the part's scale)",
+                    alt_report.error.hausdorff, fr->error.hausdorff,
+                    fr->control_mesh.quality.crease_edges_kept);
+      *fitted = std::move(alt);
+      *fr = std::move(alt_report);
+      *kept_simplified = note;
+    }
+  }
   if (compare && fr->control_mesh.method == "remesh") {
     // The remesh moves the source's crease vertices off its creases; a simplification keeps
     // them. Fit on both and keep the simplification's only where its two-sided Hausdorff

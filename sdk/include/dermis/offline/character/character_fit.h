@@ -71,6 +71,14 @@ struct CharacterFitOptions {
   /// The remeshed control mesh keeps the source's creases (dihedral above crease_angle) as
   /// control edges, as it keeps boundaries (QuadRemeshOptions::crease_angle_deg).
   bool remesh_creases = true;
+  /// With remesh_creases, also fit each component whose control mesh kept creases on the
+  /// remesh without them, and keep the crease-aware fit only where its two-sided Hausdorff
+  /// distance is below crease_margin times the other's: creases sharpen low-poly, hard-edged
+  /// parts (RiggedSimple, RiggedFigure, the Fox) but their denser control meshes fit organic
+  /// parts worse (the demo creature, CesiumMan; docs/characters.md, "Creases or not"). Doubles
+  /// the fit time of parts with creases.
+  bool compare_without_creases = true;
+  double crease_margin = 0.9;
   /// Also fit each component on the simplification's control mesh (ControlMeshMethod::
   /// kSimplify), which keeps the source's crease vertices, and keep that fit where its
   /// two-sided Hausdorff distance is below simplified_margin times the remesh's (box-shaped
