@@ -36,6 +36,7 @@
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -625,11 +626,86 @@ std::string_view BadColladaIndexList(std::string_view text) {
   return {};
 }
 
+// The value of attribute `name` in the start tag `tag` (the text between '<' and '>'), or
+// an empty view.
+std::string_view XmlAttribute(std::string_view tag, std::string_view name) {
+  for (std::size_t i = tag.find(name); i != std::string_view::npos; i = tag.find(name, i + 1)) {
+    const bool starts = i > 0 && (tag[i - 1] == ' ' || tag[i - 1] == '\t' || tag[i - 1] == '\n' ||
+                                  tag[i - 1] == '\r');
+    std::size_t e = i + name.size();
+    while (e < tag.size() && tag[e] == ' ') ++e;
+    if (!starts || e >= tag.size() || tag[e] != '=') continue;
+    ++e;
+    while (e < tag.size() && tag[e] == ' ') ++e;
+    if (e >= tag.size() || (tag[e] != '"' && tag[e] != '\'')) continue;
+    const std::size_t close = tag.find(tag[e], e + 1);
+    if (close == std::string_view::npos) return {};
+    return tag.substr(e + 1, close - e - 1);
+  }
+  return {};
+}
+
+// A non-negative decimal attribute value, or `fallback` when absent; -1 when not a number.
+std::int64_t XmlCount(std::string_view value, std::int64_t fallback) {
+  if (value.empty()) return fallback;
+  std::int64_t n = 0;
+  for (const char c : value) {
+    if (c < '0' || c > '9' || n > (std::int64_t{1} << 40)) return -1;
+    n = n * 10 + (c - '0');
+  }
+  return n;
+}
+
+// The first COLLADA <accessor> that reads past the array it names (offset + count x stride
+// values of an array of `count` values, COLLADA 1.4.1 section 5), as a message, or an empty
+// string. Assimp 5.2 reads such accessors without a bound check (a read past the heap block,
+// found by fuzz_assimp: stride="32" over a 360-value array). Linear in the file.
+std::string BadColladaAccessor(std::string_view text) {
+  std::map<std::string_view, std::int64_t> arrays;  // id -> value count
+  std::vector<std::string_view> accessors;
+  for (std::size_t i = text.find('<'); i != std::string_view::npos; i = text.find('<', i + 1)) {
+    const std::size_t close = text.find('>', i);
+    if (close == std::string_view::npos) break;
+    const std::string_view tag = text.substr(i + 1, close - i - 1);
+    std::size_t e = 0;
+    while (e < tag.size() && tag[e] != ' ' && tag[e] != '\t' && tag[e] != '\n' && tag[e] != '\r' &&
+           tag[e] != '/') {
+      ++e;
+    }
+    const std::string_view name = tag.substr(0, e);
+    if (name == "accessor") {
+      accessors.push_back(tag);
+    } else if (name.size() > 6 && name.substr(name.size() - 6) == "_array") {
+      const std::string_view id = XmlAttribute(tag, "id");
+      if (!id.empty()) arrays[id] = XmlCount(XmlAttribute(tag, "count"), 0);
+    }
+    i = close;
+  }
+  for (const std::string_view tag : accessors) {
+    std::string_view source = XmlAttribute(tag, "source");
+    if (!source.empty() && source[0] == '#') source.remove_prefix(1);
+    const auto it = arrays.find(source);
+    if (it == arrays.end()) continue;  // Assimp refuses an accessor of an unknown source
+    const std::int64_t count = XmlCount(XmlAttribute(tag, "count"), 0);
+    const std::int64_t stride = XmlCount(XmlAttribute(tag, "stride"), 1);
+    const std::int64_t offset = XmlCount(XmlAttribute(tag, "offset"), 0);
+    if (count < 0 || stride < 0 || offset < 0 || it->second < 0 ||
+        offset + count * stride > it->second) {
+      return "COLLADA <accessor source=\"#" + std::string(source) + "\" count=\"" +
+             std::string(XmlAttribute(tag, "count")) + "\" stride=\"" +
+             std::string(XmlAttribute(tag, "stride")) + "\"> reads past the " +
+             std::to_string(it->second) + " values of its array";
+    }
+  }
+  return std::string();
+}
+
 // What Assimp is not given: files of an extension it does not list (it would try every
 // importer on their content, and Assimp 5.2 leaks memory in several of them on bad input),
 // 3MF (Assimp 5.2's 3MF importer leaks on failed imports), and XML nested deeper than
 // limits::kMaxXmlDepth (its Collada reader recurses per node and overflows the stack), and
-// COLLADA index lists with a character that is not part of an integer (BadColladaIndexList).
+// COLLADA index lists with a character that is not part of an integer (BadColladaIndexList)
+// and accessors reading past their arrays (BadColladaAccessor).
 Status CheckBeforeAssimp(const std::string& path, const std::string& ext,
                          const Assimp::Importer& importer) {
   if (ext.empty() || !importer.IsExtensionSupported(ext)) {
@@ -661,6 +737,8 @@ Status CheckBeforeAssimp(const std::string& path, const std::string& ext,
       return Status::InvalidInput(path + ": COLLADA <" + std::string(list) +
                                   "> holds a character that is not part of an integer: refused");
     }
+    const std::string accessor = BadColladaAccessor(bytes);
+    if (!accessor.empty()) return Status::InvalidInput(path + ": " + accessor + ": refused");
   }
   return Status::Ok();
 }

@@ -175,6 +175,19 @@ def main():
         '</library_geometries><library_visual_scenes><visual_scene id="s"><node id="n">'
         '<instance_geometry url="#g"/></node></visual_scene></library_visual_scenes><scene>'
         '<instance_visual_scene url="#s"/></scene></COLLADA>\n').encode())
+    # Found by fuzz_assimp (2026-12-02): an accessor whose stride reads past its array made
+    # Assimp 5.2 read past the heap block; refused before Assimp.
+    write(out, 'assimp', 'accessor_past_array.dae', b'\x00' + (
+        '<?xml version="1.0"?>\n<COLLADA version="1.4.1"><asset><up_axis>Y_UP</up_axis></asset>'
+        '<library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" '
+        'count="9">0 0 0 1 0 0 0 1 0</float_array><technique_common><accessor source="#pa" '
+        'count="3" stride="32"><param name="X" type="float"/><param name="Y" type="float"/>'
+        '<param name="Z" type="float"/></accessor></technique_common></source><vertices id="v">'
+        '<input semantic="POSITION" source="#p"/></vertices><triangles count="1"><input '
+        'semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles></mesh></geometry>'
+        '</library_geometries><library_visual_scenes><visual_scene id="s"><node id="n">'
+        '<instance_geometry url="#g"/></node></visual_scene></library_visual_scenes><scene>'
+        '<instance_visual_scene url="#s"/></scene></COLLADA>\n').encode())
 
 
 if __name__ == '__main__':

@@ -472,14 +472,17 @@ TEST_CASE("A gltfpack-style meshopt file and a Draco file of CesiumMan fit like 
   // The same parts, every vertex bound, and the fit error close to the original's: the inputs
   // differ by their quantisation (meshopt file: a 15/16-bit grid, about 2e-5 of the diagonal;
   // Draco: 14 bits), which is a third of E1 mean, so E1 mean may grow by some 15 % (measured:
-  // CesiumMan +4 % meshopt, -5 % Draco). E1 max is one vertex on a crease, where the
-  // quantised input may tip a part between the remeshed and the simplified control mesh
-  // (docs/characters.md): it stays a small fraction of the diagonal (measured: original
-  // 0.065 %, meshopt 0.11 %, Draco 0.041 %), held under 0.2 %.
+  // CesiumMan +4 % meshopt, -5 % Draco, on the same control mesh). The quantised input may
+  // also tip the part between the control meshes with and without creases, whose Hausdorff
+  // distances are close on CesiumMan (docs/characters.md, "Creases or not"; measured: the
+  // original keeps the one without creases, E1 mean 8.3e-5 of the diagonal, the meshopt and
+  // Draco files the crease-aware one, 2.5e-5 and 2.4e-5): a compressed input must not fit
+  // worse. E1 max is one vertex on a crease: it stays a small fraction of the diagonal,
+  // held under 0.2 %.
   for (const CharacterFitReport* r : {&meshopt, &draco}) {
     CHECK(r->parts_fitted == original.parts_fitted);
     CHECK(r->vertices_bound == r->vertices);
-    CHECK(r->e1_mean == Approx(original.e1_mean).epsilon(0.2));
+    CHECK(r->e1_mean <= 1.2 * original.e1_mean);
     CHECK(r->e1_max <= 2e-3);
   }
   CHECK(meshopt.vertices == original.vertices);
