@@ -417,6 +417,32 @@ double GpuSecondsPerCall(gpu::Context& ctx, const EvaluationPlan& plan, const fl
 }
 #endif
 
+// The control vertices' skin weights of `part`, as the deformers take them.
+std::vector<VertexWeights> ControlWeights(const CharacterPart& part) {
+  std::vector<VertexWeights> w(part.surface.rest_positions.size());
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    w[i].joints = part.control_joints[i];
+    w[i].weights = part.control_weights[i];
+  }
+  return w;
+}
+
+// Column-major float joint palettes (16 floats per joint) as double matrices.
+std::vector<std::vector<glm::dmat4>> DoublePalettes(
+    const std::vector<std::vector<float>>& palettes) {
+  std::vector<std::vector<glm::dmat4>> out;
+  for (const std::vector<float>& pal : palettes) {
+    std::vector<glm::dmat4> d(pal.size() / 16);
+    for (std::size_t j = 0; j < d.size(); ++j) {
+      for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) d[j][c][r] = static_cast<double>(pal[16 * j + 4 * c + r]);
+      }
+    }
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -893,21 +919,8 @@ int main(int argc, char** argv) {
   {
     const CharacterPart& part = rc->character().parts[0];
     const std::size_t n = part.surface.rest_positions.size();
-    std::vector<VertexWeights> w(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      w[i].joints = part.control_joints[i];
-      w[i].weights = part.control_weights[i];
-    }
-    std::vector<std::vector<glm::dmat4>> dpal;
-    for (const std::vector<float>& pal : palettes) {
-      std::vector<glm::dmat4> d(pal.size() / 16);
-      for (std::size_t j = 0; j < d.size(); ++j) {
-        for (int c = 0; c < 4; ++c) {
-          for (int r = 0; r < 4; ++r) d[j][c][r] = static_cast<double>(pal[16 * j + 4 * c + r]);
-        }
-      }
-      dpal.push_back(std::move(d));
-    }
+    const std::vector<VertexWeights> w = ControlWeights(part);
+    const std::vector<std::vector<glm::dmat4>> dpal = DoublePalettes(palettes);
     std::vector<Vec3> out(n);
     const DeformerKind kinds[3] = {DeformerKind::kLbs, DeformerKind::kDqs, DeformerKind::kSweep};
     for (int k = 0; k < 3; ++k) {
@@ -940,21 +953,8 @@ int main(int argc, char** argv) {
     const CharacterPart& part = rc->character().parts[0];
     const std::size_t n = part.surface.rest_positions.size();
     const ManifoldDomain& dom = *part.surface.domain;
-    std::vector<VertexWeights> w(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      w[i].joints = part.control_joints[i];
-      w[i].weights = part.control_weights[i];
-    }
-    std::vector<std::vector<glm::dmat4>> dpal;
-    for (const std::vector<float>& pal : palettes) {
-      std::vector<glm::dmat4> d(pal.size() / 16);
-      for (std::size_t j = 0; j < d.size(); ++j) {
-        for (int c = 0; c < 4; ++c) {
-          for (int r = 0; r < 4; ++r) d[j][c][r] = static_cast<double>(pal[16 * j + 4 * c + r]);
-        }
-      }
-      dpal.push_back(std::move(d));
-    }
+    const std::vector<VertexWeights> w = ControlWeights(part);
+    const std::vector<std::vector<glm::dmat4>> dpal = DoublePalettes(palettes);
     std::unique_ptr<Deformer> d;
     if (!MakeDeformer(DeformerKind::kSweep, *rc->rig(0), part.surface.rest_positions.data(),
                       nullptr, w.data(), n, &d)

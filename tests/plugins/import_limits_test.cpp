@@ -174,32 +174,40 @@ TEST_CASE("assimp limits: deep XML, unknown formats and 3MF are refused before A
   CHECK(s.message().find("nested deeper") == std::string::npos);
 }
 
+namespace {
+
+// A COLLADA file of one triangle: `accessor` holds the position accessor's count / stride /
+// offset attributes, `p` the triangle list's indices.
+std::string ColladaTriangle(const std::string& accessor, const std::string& p) {
+  return std::string(R"(<?xml version="1.0"?><COLLADA version="1.4.1">)") +
+         R"(<asset><up_axis>Y_UP</up_axis></asset><library_geometries><geometry id="g"><mesh>)"
+         R"(<source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array>)"
+         R"(<technique_common><accessor source="#pa" )" +
+         accessor +
+         R"(><param name="X" type="float"/><param name="Y" type="float"/>)"
+         R"(<param name="Z" type="float"/></accessor></technique_common></source><vertices )"
+         R"(id="v"><input semantic="POSITION" source="#p"/></vertices><triangles count="1">)"
+         R"(<input semantic="VERTEX" source="#v" offset="0"/><p>)" +
+         p +
+         R"(</p></triangles></mesh></geometry></library_geometries><library_visual_scenes>)"
+         R"(<visual_scene id="s"><node id="n"><instance_geometry url="#g"/></node>)"
+         R"(</visual_scene></library_visual_scenes><scene><instance_visual_scene url="#s"/>)"
+         R"(</scene></COLLADA>)";
+}
+
+}  // namespace
+
 TEST_CASE("assimp limits: a COLLADA index list with a non-integer character is refused") {
   // fuzz_assimp found one stray byte in a <p> list making Assimp 5.2 allocate without bound.
   test::TempDir dir;
-  const auto triangle = [](const std::string& p) {
-    return std::string(R"(<?xml version="1.0"?><COLLADA version="1.4.1">)") +
-           R"(<asset><up_axis>Y_UP</up_axis></asset><library_geometries><geometry id="g"><mesh>)"
-           R"(<source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array>)"
-           R"(<technique_common><accessor source="#pa" count="3" stride="3"><param name="X" )"
-           R"(type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>)"
-           R"(</accessor></technique_common></source><vertices id="v"><input )"
-           R"(semantic="POSITION" source="#p"/></vertices><triangles count="1"><input )"
-           R"(semantic="VERTEX" source="#v" offset="0"/><p>)" +
-           p +
-           R"(</p></triangles></mesh></geometry></library_geometries><library_visual_scenes>)"
-           R"(<visual_scene id="s"><node id="n"><instance_geometry url="#g"/></node>)"
-           R"(</visual_scene></library_visual_scenes><scene><instance_visual_scene url="#s"/>)"
-           R"(</scene></COLLADA>)";
-  };
-  test::WriteFile(dir.File("good.dae"), triangle("0 1\n2"));
+  test::WriteFile(dir.File("good.dae"), ColladaTriangle(R"(count="3" stride="3")", "0 1\n2"));
   Asset asset;
   Status s = ImportAssimp(dir.File("good.dae"), &asset);
   INFO(s.message());
   REQUIRE(s.ok());
   CHECK(asset.meshes.size() == 1);
   for (const char* bad : {"0 1x 2", "0 1 \xcf\xc9", "0 1.5 2"}) {
-    test::WriteFile(dir.File("bad.dae"), triangle(bad));
+    test::WriteFile(dir.File("bad.dae"), ColladaTriangle(R"(count="3" stride="3")", bad));
     s = ImportAssimp(dir.File("bad.dae"), &asset);
     CHECK(s.message() == dir.File("bad.dae") +
                              ": COLLADA <p> holds a character that is not part of an integer: "
@@ -210,32 +218,19 @@ TEST_CASE("assimp limits: a COLLADA index list with a non-integer character is r
 TEST_CASE("assimp limits: a COLLADA accessor reading past its array is refused") {
   // fuzz_assimp found stride="32" over a 360-value array read past the heap block in Assimp.
   test::TempDir dir;
-  const auto triangle = [](const std::string& accessor) {
-    return std::string(R"(<?xml version="1.0"?><COLLADA version="1.4.1">)") +
-           R"(<asset><up_axis>Y_UP</up_axis></asset><library_geometries><geometry id="g"><mesh>)"
-           R"(<source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array>)"
-           R"(<technique_common><accessor source="#pa" )" +
-           accessor +
-           R"(><param name="X" type="float"/><param name="Y" type="float"/>)"
-           R"(<param name="Z" type="float"/></accessor></technique_common></source><vertices )"
-           R"(id="v"><input semantic="POSITION" source="#p"/></vertices><triangles count="1">)"
-           R"(<input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles></mesh>)"
-           R"(</geometry></library_geometries><library_visual_scenes><visual_scene id="s">)"
-           R"(<node id="n"><instance_geometry url="#g"/></node></visual_scene>)"
-           R"(</library_visual_scenes><scene><instance_visual_scene url="#s"/></scene></COLLADA>)";
-  };
   Asset asset;
-  test::WriteFile(dir.File("good.dae"), triangle(R"(count="3" stride="3")"));
+  test::WriteFile(dir.File("good.dae"), ColladaTriangle(R"(count="3" stride="3")", "0 1 2"));
   Status s = ImportAssimp(dir.File("good.dae"), &asset);
   INFO(s.message());
   REQUIRE(s.ok());
   CHECK(asset.meshes.at(0).primitives.at(0).positions.size() == 3);
-  test::WriteFile(dir.File("bad.dae"), triangle(R"(count="3" stride="32")"));
+  test::WriteFile(dir.File("bad.dae"), ColladaTriangle(R"(count="3" stride="32")", "0 1 2"));
   s = ImportAssimp(dir.File("bad.dae"), &asset);
   CHECK(s.message() == dir.File("bad.dae") +
                            ": COLLADA <accessor source=\"#pa\" count=\"3\" stride=\"32\"> "
                            "reads past the 9 values of its array: refused");
-  test::WriteFile(dir.File("offset.dae"), triangle(R"(count="3" stride="3" offset="1")"));
+  test::WriteFile(dir.File("offset.dae"),
+                  ColladaTriangle(R"(count="3" stride="3" offset="1")", "0 1 2"));
   s = ImportAssimp(dir.File("offset.dae"), &asset);
   CHECK(s.message().find("reads past the 9 values of its array") != std::string::npos);
 }

@@ -93,24 +93,32 @@ Status ParseNestedSurface(std::string_view bytes, const std::string& name, Displ
   return ReadSurfaceBody(&r, file.version, out, info);
 }
 
+void ReadDomainHeader(ByteReader* reader, DomainOptions* options, std::uint32_t* nv,
+                      std::uint32_t* nf) {
+  ByteReader& r = *reader;
+  const std::uint8_t chart = r.U8("chart type"), blend = r.U8("blend type");
+  if (chart > 2) r.Fail("unknown chart type " + std::to_string(chart));
+  if (blend > 1) r.Fail("unknown blend type " + std::to_string(blend));
+  options->chart_type = static_cast<ChartType>(chart);
+  options->blend_type = static_cast<BlendType>(blend);
+  options->blend_lb = r.F64("blend lb");
+  *nv = r.U32("vertex count");
+  *nf = r.U32("face count");
+  if (r.ok() && (*nv > static_cast<std::uint32_t>(std::numeric_limits<Index>::max()) ||
+                 *nf > static_cast<std::uint32_t>(std::numeric_limits<Index>::max() / 4))) {
+    r.Fail("vertex or face count too large");
+  }
+}
+
 Status ReadSurfaceBody(ByteReader* reader, std::uint32_t version, DisplacedSurface* out,
                        DsurfFileInfo* info) {
   ByteReader& r = *reader;
   SectionMarks marks(reader, info);
   const std::string& name = r.name();
   DomainData data;
-  const std::uint8_t chart = r.U8("chart type"), blend = r.U8("blend type");
-  if (chart > 2) r.Fail("unknown chart type " + std::to_string(chart));
-  if (blend > 1) r.Fail("unknown blend type " + std::to_string(blend));
-  data.options.chart_type = static_cast<ChartType>(chart);
-  data.options.blend_type = static_cast<BlendType>(blend);
-  data.options.blend_lb = r.F64("blend lb");
-  const std::uint32_t nv = r.U32("vertex count"), nf = r.U32("face count");
+  std::uint32_t nv = 0, nf = 0;
+  ReadDomainHeader(&r, &data.options, &nv, &nf);
   marks.Close("header");
-  if (r.ok() && (nv > static_cast<std::uint32_t>(std::numeric_limits<Index>::max()) ||
-                 nf > static_cast<std::uint32_t>(std::numeric_limits<Index>::max() / 4))) {
-    r.Fail("vertex or face count too large");
-  }
   std::vector<Vec3> positions;
   if (r.Need(nv, 24, "control positions")) {
     positions.resize(nv);

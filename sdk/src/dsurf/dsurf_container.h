@@ -96,6 +96,11 @@ PartFitSummary ReadSummary(ByteReader* r);
 void WriteUnfitted(const std::vector<UnfittedPart>& unfitted, ByteWriter* w);
 Status ReadUnfitted(ByteReader* r, std::vector<UnfittedPart>* unfitted);
 
+/// The domain header every surface version starts with: u8 chart type (0..2), u8 blend type
+/// (0..1), f64 blend lb, u32 vertex count, u32 face count. Writes the options into *options
+/// and the counts into *nv, *nf; an unknown type or a count past Index fails `r`.
+void ReadDomainHeader(ByteReader* r, DomainOptions* options, std::uint32_t* nv, std::uint32_t* nf);
+
 /// Unsigned LEB128 (7 bits per byte, low bits first, the high bit set on every byte but the
 /// last; at most 5 bytes).
 void WriteVarint(std::uint32_t v, ByteWriter* w);

@@ -445,18 +445,9 @@ Status ReadSurface(ByteReader* reader, bool quantized, bool source_kept, Displac
                    dsurf::SectionMarks* marks) {
   ByteReader& r = *reader;
   DomainData data;
-  const std::uint8_t chart = r.U8("chart type"), blend = r.U8("blend type");
-  if (chart > 2) r.Fail("unknown chart type " + std::to_string(chart));
-  if (blend > 1) r.Fail("unknown blend type " + std::to_string(blend));
-  data.options.chart_type = static_cast<ChartType>(chart);
-  data.options.blend_type = static_cast<BlendType>(blend);
-  data.options.blend_lb = r.F64("blend lb");
-  const std::uint32_t nv = r.U32("vertex count"), nf = r.U32("face count");
+  std::uint32_t nv = 0, nf = 0;
+  dsurf::ReadDomainHeader(&r, &data.options, &nv, &nf);
   marks->Close("header");
-  if (r.ok() && (nv > static_cast<std::uint32_t>(std::numeric_limits<Index>::max()) ||
-                 nf > static_cast<std::uint32_t>(std::numeric_limits<Index>::max() / 4))) {
-    r.Fail("vertex or face count too large");
-  }
   std::vector<Vec3> positions;
   if (r.Need(nv, 12, "control positions")) {
     positions.resize(nv);
