@@ -175,6 +175,10 @@ def main():
         '</library_geometries><library_visual_scenes><visual_scene id="s"><node id="n">'
         '<instance_geometry url="#g"/></node></visual_scene></library_visual_scenes><scene>'
         '<instance_visual_scene url="#s"/></scene></COLLADA>\n').encode())
+    # Found by fuzz_assimp (2026-12-02): an OFF header declaring 10^35 faces made Assimp 5.2
+    # reserve them (first byte 5: .off); refused before Assimp.
+    write(out, 'assimp', 'off_face_count.off',
+          b'\x05OFF\n3 333333333333333333333333333333333336 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n')
     # Found by fuzz_assimp (2026-12-02): an accessor whose stride reads past its array made
     # Assimp 5.2 read past the heap block; refused before Assimp.
     write(out, 'assimp', 'accessor_past_array.dae', b'\x00' + (
