@@ -721,9 +721,12 @@ std::string BadOffHeader(std::string_view text) {
     }
   };
   skip();
-  while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r' &&
-         text[i] != '\n') {
-    ++i;  // the keyword: OFF, COFF, NOFF, STOFF, ...
+  // The keyword (OFF, COFF, NOFF, STOFF, ...), which Assimp also reads when it is missing.
+  if (i < text.size() && (text[i] < '0' || text[i] > '9')) {
+    while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r' &&
+           text[i] != '\n') {
+      ++i;
+    }
   }
   const double bytes = static_cast<double>(text.size());
   const char* const what[] = {"vertices", "faces"};

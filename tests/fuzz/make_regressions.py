@@ -179,6 +179,7 @@ def main():
     # reserve them (first byte 5: .off); refused before Assimp.
     write(out, 'assimp', 'off_face_count.off',
           b'\x05OFF\n3 333333333333333333333333333333333336 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n')
+    write(out, 'assimp', 'off_no_keyword.off', b'\x05' + b'1' * 30 + b' 1 0\n0 0 0\n1 0 0\n')
     # Found by fuzz_assimp (2026-12-02): an accessor whose stride reads past its array made
     # Assimp 5.2 read past the heap block; refused before Assimp.
     write(out, 'assimp', 'accessor_past_array.dae', b'\x00' + (
