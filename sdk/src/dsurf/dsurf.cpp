@@ -110,6 +110,17 @@ void ReadDomainHeader(ByteReader* reader, DomainOptions* options, std::uint32_t*
   }
 }
 
+void ReadVertexKinds(ByteReader* reader, std::uint32_t nv, std::vector<VertexKind>* kinds) {
+  ByteReader& r = *reader;
+  if (!r.Need(nv, 1, "vertex kinds")) return;
+  kinds->resize(nv);
+  for (VertexKind& k : *kinds) {
+    const std::uint8_t v = r.U8("vertex kind");
+    if (v > 3) r.Fail("unknown vertex kind " + std::to_string(v));
+    k = static_cast<VertexKind>(v);
+  }
+}
+
 Status ReadSurfaceBody(ByteReader* reader, std::uint32_t version, DisplacedSurface* out,
                        DsurfFileInfo* info) {
   ByteReader& r = *reader;
@@ -134,14 +145,7 @@ Status ReadSurfaceBody(ByteReader* reader, std::uint32_t version, DisplacedSurfa
     quads.resize(static_cast<std::size_t>(nf) * 4);
     for (Index& q : quads) q = r.I32("quad");
   }
-  if (r.Need(nv, 1, "vertex kinds")) {
-    data.vertex_kind.resize(nv);
-    for (VertexKind& k : data.vertex_kind) {
-      const std::uint8_t v = r.U8("vertex kind");
-      if (v > 3) r.Fail("unknown vertex kind " + std::to_string(v));
-      k = static_cast<VertexKind>(v);
-    }
-  }
+  ReadVertexKinds(&r, nv, &data.vertex_kind);
   marks.Close("control meshes");
   const std::uint32_t nops = r.U32("operator count");
   if (r.Need(static_cast<std::uint64_t>(nops) + 1, 4, "operator offsets")) {

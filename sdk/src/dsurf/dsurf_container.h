@@ -101,6 +101,10 @@ Status ReadUnfitted(ByteReader* r, std::vector<UnfittedPart>* unfitted);
 /// and the counts into *nv, *nf; an unknown type or a count past Index fails `r`.
 void ReadDomainHeader(ByteReader* r, DomainOptions* options, std::uint32_t* nv, std::uint32_t* nf);
 
+/// The control vertices' kinds (u8 each, 0..3), checked against the bytes left before the
+/// vector is sized; an unknown kind fails `r`.
+void ReadVertexKinds(ByteReader* r, std::uint32_t nv, std::vector<VertexKind>* kinds);
+
 /// Unsigned LEB128 (7 bits per byte, low bits first, the high bit set on every byte but the
 /// last; at most 5 bytes).
 void WriteVarint(std::uint32_t v, ByteWriter* w);

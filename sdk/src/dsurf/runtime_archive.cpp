@@ -467,14 +467,7 @@ Status ReadSurface(ByteReader* reader, bool quantized, bool source_kept, Displac
         r.Fail("quad vertex out of range");
     }
   }
-  if (r.Need(nv, 1, "vertex kinds")) {
-    data.vertex_kind.resize(nv);
-    for (VertexKind& k : data.vertex_kind) {
-      const std::uint8_t v = r.U8("vertex kind");
-      if (v > 3) r.Fail("unknown vertex kind " + std::to_string(v));
-      k = static_cast<VertexKind>(v);
-    }
-  }
+  dsurf::ReadVertexKinds(&r, nv, &data.vertex_kind);
   marks->Close("control meshes");
   const std::uint32_t nops = r.U32("operator count");
   if (r.Need(static_cast<std::uint64_t>(nops) + 1, 4, "operator offsets")) {
