@@ -147,9 +147,12 @@ struct SweepOptions {
   /// A joint whose largest blend zone would fold the skin (arc radius below the skin radius)
   /// at a bend below this angle (radians) or below its rest bend is not swept through: its
   /// chain is cut there and the skin around it blends the two chains' frames (a torso or neck
-  /// on short spine bones, a thick tail). Default 60 degrees: bones shorter than about 1.2
-  /// times the skin radius (max_blend_fraction 0.49).
-  double min_fold_angle = 1.0471975511965976;
+  /// on short spine bones, a thick tail). Default 70 degrees: bones shorter than about 1.43
+  /// times the skin radius (max_blend_fraction 0.49); on the shared characters this cuts every
+  /// spine and neck joint and keeps every elbow, knee and wrist swept (docs/deformation.md,
+  /// "Chains": 60 degrees left CesiumMan's mid-spine, folding at 63 degrees, swept between two
+  /// cut joints, and the clip lost more volume than under DQS).
+  double min_fold_angle = 1.2217304763960306;
   /// Let the blend half-length grow with the bend as 1.1 r tan(theta / 2), so the arc radius
   /// stays above the skin radius and cross sections do not cross inside the bend (up to the
   /// cap above).
