@@ -11,6 +11,8 @@
 //    posed at rest in `lod` mode at level 8 (as `dermis animate --clip rest --mode lod --level
 //    8`) and compared with the source posed at rest, two-sided Hausdorff in % of the diagonal.
 // Usage (from the repo root): bench_fit [OBJ|PLY] [--rows bunny,torus,characters]
+//                             [--rows characters:NAME,NAME] (only those characters)
+//                             [--crease-rows 0|1] [--displacement-levels L] (characters' lod)
 //                             [--control-vertices N] [--torus-vertices N]
 //                             [--control-method remesh|simplify]
 //                             [--density D] [--control-fit ITERATIONS] [--finest-passes P]
@@ -185,6 +187,8 @@ struct Settings {
   double smoothing = -1.0;        // -1: FitOptions' default
   double samples = -1.0;          // -1: CharacterFitOptions' default
   double crease_samples = -1.0;   // -1: CharacterFitOptions' default
+  int crease_rows = -1;           // -1: CharacterFitOptions' default
+  int displacement_levels = -1;   // characters: displacement levels of the lod surface (-1: all)
   double crease_angle = -1.0;     // -1: CharacterFitOptions' default
   double node_weight = -1.0;      // -1: the fit's default
   double budget = -1.0;           // coefficients per point; -1: the fit's default, 0: none
@@ -551,6 +555,9 @@ int RunCharacters(const Settings& st) {
       "source max %% | source -> lod max %% | E1 max (model) | coefficients | fit (s) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const char* name : names) {
+    // `--rows characters:Fox,CesiumMan` runs only the named ones.
+    const std::size_t colon = st.rows.find("characters:");
+    if (colon != std::string::npos && st.rows.find(name, colon) == std::string::npos) continue;
     const std::string path = std::string("../shared/data/gltf/") + name + ".glb";
     if (!std::filesystem::exists(path)) {
       std::printf("| %s | skipped: %s not found | | | | | | | |\n", name, path.c_str());
@@ -562,6 +569,7 @@ int RunCharacters(const Settings& st) {
     ApplySettings(st, &options.fit);
     if (st.samples >= 0.0) options.samples_per_control_edge = st.samples;
     if (st.crease_samples >= 0.0) options.crease_samples = st.crease_samples;
+    if (st.crease_rows >= 0) options.crease_rows = st.crease_rows != 0;
     if (st.crease_angle >= 0.0) options.crease_angle = st.crease_angle;
     if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
     if (st.no_crease_remesh) options.remesh_creases = false;
@@ -574,6 +582,7 @@ int RunCharacters(const Settings& st) {
     CharacterPoseOptions po;
     po.mode = CharacterPoseMode::kLod;
     po.level = 8;
+    po.displacement_levels = st.displacement_levels;
     CharacterPoser poser;
     std::vector<PosedPrimitive> posed;
     if (s.ok()) s = CharacterPoser::Build(ch, po, &poser);
@@ -676,6 +685,10 @@ int main(int argc, char** argv) {
       st.level_smoothing = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--crease-samples") == 0 && i + 1 < argc) {
       st.crease_samples = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--crease-rows") == 0 && i + 1 < argc) {
+      st.crease_rows = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--displacement-levels") == 0 && i + 1 < argc) {
+      st.displacement_levels = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--crease-angle") == 0 && i + 1 < argc) {
       st.crease_angle = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--node-weight") == 0 && i + 1 < argc) {

@@ -328,18 +328,22 @@ TEST_CASE("character: samples on a low-poly box's edges hold the surface to its 
                               << " (" << inside_only << ")");
   CHECK(d < d_sparse);
   // Measured 0.077 (3.1 % of the box's diagonal, 2.45) against 0.257 sparse; the surface
-  // still rounds the corners, where three creases meet.
-  CHECK(d < 0.085);
+  // still rounds the corners, where three creases meet. With the rows of samples beside the
+  // creases (CharacterFitOptions::crease_rows) 0.095 on this control mesh without creases (the
+  // characters' remeshes without creases improve with them, docs/characters.md), and the
+  // default below 0.0614 -> 0.0585.
+  CHECK(d < 0.1);
   CHECK(d_sparse > 2.0 * d);
   // With the box's 12 edges kept as control edges (the default), closer still: measured
-  // 0.0614 (2.5 % of the diagonal) against 0.077, and 0.088 with the sparse samples.
+  // 0.0614 (2.5 % of the diagonal) against 0.077, and 0.088 with the sparse samples (0.0585
+  // with the rows beside creases).
   CharacterFitOptions kept = options;
   kept.remesh_creases = true;
   std::int64_t kept_coefficients = 0;
   const double d_kept = LodBoxDistance(kept, &kept_coefficients);
   INFO("creases kept: " << d_kept << " (" << kept_coefficients << " coefficients)");
   CHECK(d_kept < 0.9 * d);
-  CHECK(d_kept < 0.07);
+  CHECK(d_kept < 0.065);
 }
 
 TEST_CASE("character: the simplification's control mesh is kept only where it fits better") {
@@ -371,6 +375,79 @@ TEST_CASE("character: the simplification's control mesh is kept only where it fi
         simplified);
   CHECK(a.parts[0].surface.rest_positions.size() ==
         (simplified ? s : r).parts[0].surface.rest_positions.size());
+}
+
+}  // namespace dermis
+
+namespace dermis {
+namespace {
+
+/// A static asset shaped like Khronos' RiggedSimple: a cone from radius 1 (y = 0) to 0.49
+/// (y = 4.575) and a cylinder on to radius 0.45 (y = 9.15), 32 sides of two long triangles
+/// each, both ends closed by flat 32-gons fanned from their first rim vertex: a 96 degree
+/// crease around the wide end, triangles far longer than the sample spacing beside it.
+Asset CappedCone() {
+  const int n = 32;
+  const float y[3] = {0.0f, 4.575f, 9.15f}, r[3] = {1.0f, 0.49f, 0.45f};
+  AssetPrimitive prim;
+  for (int ring = 0; ring < 3; ++ring) {
+    for (int k = 0; k < n; ++k) {
+      const float a = 6.28318530718f * static_cast<float>(k) / static_cast<float>(n);
+      prim.positions.emplace_back(r[ring] * std::cos(a), y[ring], -r[ring] * std::sin(a));
+    }
+  }
+  const auto at = [n](int ring, int k) { return static_cast<std::uint32_t>(ring * n + k % n); };
+  for (int ring = 0; ring < 2; ++ring) {
+    for (int k = 0; k < n; ++k) {
+      prim.indices.insert(prim.indices.end(), {at(ring, k), at(ring, k + 1), at(ring + 1, k + 1),
+                                               at(ring, k), at(ring + 1, k + 1), at(ring + 1, k)});
+    }
+  }
+  for (int k = 1; k + 1 < n; ++k) {
+    prim.indices.insert(prim.indices.end(), {at(0, 0), at(0, k + 1), at(0, k)});
+    prim.indices.insert(prim.indices.end(), {at(2, 0), at(2, k), at(2, k + 1)});
+  }
+  Asset asset;
+  asset.source = "capped_cone";
+  AssetMesh mesh;
+  mesh.name = "cone";
+  mesh.primitives = {prim};
+  asset.meshes.push_back(mesh);
+  AssetNode node;
+  node.name = "cone";
+  node.mesh = 0;
+  asset.nodes = {node};
+  AssetScene scene;
+  scene.nodes = {0};
+  asset.scenes.push_back(scene);
+  return asset;
+}
+
+}  // namespace
+
+TEST_CASE("character: rows of samples beside a crease keep the surface from overshooting it") {
+  const Asset cone = CappedCone();
+  REQUIRE(ValidateAsset(cone).ok());
+  CharacterFitOptions options;
+  options.fit.threads = 2;
+  CharacterFitOptions no_rows = options;
+  no_rows.crease_rows = false;
+  Character with, without;
+  CharacterFitReport rw, ro;
+  REQUIRE(FitCharacter(cone, options, &with, &rw).ok());
+  REQUIRE(FitCharacter(cone, no_rows, &without, &ro).ok());
+  REQUIRE(rw.parts_fitted == 1);
+  REQUIRE(ro.parts_fitted == 1);
+  const PartFitSummary &fw = with.parts[0].fit, &fo = without.parts[0].fit;
+  INFO("Hausdorff (of the part's scale): with rows " << fw.hausdorff << " (" << fw.coefficients
+                                                     << " coefficients), without " << fo.hausdorff
+                                                     << " (" << fo.coefficients << ")");
+  // Measured 0.0052 against 0.0093 (0.047 and 0.085 model units): without the rows the
+  // finest levels stand off the wide end's rim between the rim's samples and the grid of the
+  // long side triangles.
+  CHECK(fw.hausdorff < 0.8 * fo.hausdorff);
+  CHECK(fw.hausdorff < 0.007);
+  CHECK(20 * fw.coefficients < 21 * fo.coefficients);  // within 5%
 }
 
 }  // namespace dermis

@@ -101,9 +101,10 @@ VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalP
 /// data already). Edges where the source turns sharply (boundaries, and creases whose
 /// dihedral angle exceeds `crease_angle` radians) get `crease_factor` times as many: the smooth
 /// domain surface rounds a crease, and only data on the crease line ask the displacement to
-/// follow it (docs/characters.md, "Where the distances are").
+/// follow it (docs/characters.md, "Where the distances are"). With `crease_rows`, rows of
+/// points beside those edges fill the gap to the grid of a large triangle (below).
 std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double crease_angle,
-                              double crease_factor) {
+                              double crease_factor, bool crease_rows) {
   std::vector<Vec3> out;
   if (!(spacing > 0.0)) return out;
   std::vector<Vec3> normal(static_cast<std::size_t>(mesh.num_faces()));
@@ -142,6 +143,36 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double cr
     for (int i = 1; i < n_edge; ++i) {
       const double s = double(i) / n_edge;
       out.push_back((1.0 - s) * a + s * b);
+    }
+    if (!sharp || !crease_rows || crease_factor <= 1.0) continue;
+    // The grid inside a large triangle (above) starts one grid row, height / n_grid, away from
+    // its edges: beside a sharp edge that gap is up to crease_factor times the spacing h along
+    // the edge, and the finest displacement levels, held there only by their smoothing,
+    // overshoot the crease (RiggedSimple's cap rim, docs/characters.md). Rows parallel to the
+    // sharp edge, h apart (their points spaced like the grid), fill the gap.
+    for (Index f : e.second) {
+      const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
+      Index third = v[0];
+      for (int k = 0; k < 3; ++k) {
+        if (v[k] != e.first.first && v[k] != e.first.second) third = v[k];
+      }
+      const Vec3& c = mesh.positions[third];
+      const double longest =
+          std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
+      if (!(longest > 2.0 * spacing)) continue;  // no grid inside: no gap to fill
+      const int n_grid = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
+      const double base = glm::length(b - a);
+      const double height = base > 0.0 ? glm::length(glm::cross(b - a, c - a)) / base : 0.0;
+      const double gap = height / n_grid;
+      for (int r = 1; r * h < gap; ++r) {
+        const double t = r * h / height;
+        const Vec3 p = a + t * (c - a), q = b + t * (c - b);
+        const int n_row = std::min(128, static_cast<int>(std::ceil(glm::length(q - p) / spacing)));
+        for (int i = 0; i <= n_row; ++i) {
+          const double s = double(i) / std::max(1, n_row);
+          out.push_back((1.0 - s) * p + s * q);
+        }
+      }
     }
   }
   return out;
@@ -288,8 +319,9 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
   if (options.samples_per_control_edge > 0.0) {
     const double edge = std::sqrt(Area(dense) / fo.control_vertices);
-    const std::vector<Vec3> extra = AreaSamples(dense, edge / options.samples_per_control_edge,
-                                                options.crease_angle, options.crease_samples);
+    const std::vector<Vec3> extra =
+        AreaSamples(dense, edge / options.samples_per_control_edge, options.crease_angle,
+                    options.crease_samples, options.crease_rows);
     input.points.insert(input.points.end(), extra.begin(), extra.end());
   }
   input.mesh = &dense;

@@ -68,6 +68,11 @@ struct CharacterFitOptions {
   /// closer, so the displacement follows the crease the smooth domain surface rounds.
   double crease_angle = 0.5;
   double crease_samples = 2.0;
+  /// Inside a triangle large enough for its own grid of samples, rows of points parallel to
+  /// each of its crease and boundary edges fill the gap between the edge and the grid, so
+  /// the samples are crease_samples times as dense across a crease as along the grid (the
+  /// finest displacement levels otherwise overshoot the crease in that gap).
+  bool crease_rows = true;
   /// The remeshed control mesh keeps the source's creases (dihedral above crease_angle) as
   /// control edges, as it keeps boundaries (QuadRemeshOptions::crease_angle_deg).
   bool remesh_creases = true;
