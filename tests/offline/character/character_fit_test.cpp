@@ -230,6 +230,24 @@ TEST_CASE("character: a mesh whose triangles all collapse is listed as unfitted"
 namespace dermis {
 namespace {
 
+/// One mesh of one primitive under one node of one scene (the synthetic characters below).
+Asset SinglePrimitiveAsset(const AssetPrimitive& prim, const char* source, const char* name) {
+  Asset asset;
+  asset.source = source;
+  AssetMesh mesh;
+  mesh.name = name;
+  mesh.primitives = {prim};
+  asset.meshes.push_back(mesh);
+  AssetNode node;
+  node.name = name;
+  node.mesh = 0;
+  asset.nodes = {node};
+  AssetScene scene;
+  scene.nodes = {0};
+  asset.scenes.push_back(scene);
+  return asset;
+}
+
 /// A static asset: the box [0, 2] x [0, 1] x [0, 1] with each unit square of its sides split
 /// into two triangles (10 x 4 of them around, 4 on each end), as low-poly game meshes model
 /// a head or a limb: 90 degree creases, long triangles, no vertex between the corners of a
@@ -263,20 +281,7 @@ Asset LowPolyBox() {
       }
     }
   }
-  Asset asset;
-  asset.source = "low_poly_box";
-  AssetMesh mesh;
-  mesh.name = "box";
-  mesh.primitives = {prim};
-  asset.meshes.push_back(mesh);
-  AssetNode node;
-  node.name = "box";
-  node.mesh = 0;
-  asset.nodes = {node};
-  AssetScene scene;
-  scene.nodes = {0};
-  asset.scenes.push_back(scene);
-  return asset;
+  return SinglePrimitiveAsset(prim, "low_poly_box", "box");
 }
 
 /// Distance of p from the surface of the box [0, 2] x [0, 1] x [0, 1].
@@ -407,20 +412,7 @@ Asset CappedCone() {
     prim.indices.insert(prim.indices.end(), {at(0, 0), at(0, k + 1), at(0, k)});
     prim.indices.insert(prim.indices.end(), {at(2, 0), at(2, k), at(2, k + 1)});
   }
-  Asset asset;
-  asset.source = "capped_cone";
-  AssetMesh mesh;
-  mesh.name = "cone";
-  mesh.primitives = {prim};
-  asset.meshes.push_back(mesh);
-  AssetNode node;
-  node.name = "cone";
-  node.mesh = 0;
-  asset.nodes = {node};
-  AssetScene scene;
-  scene.nodes = {0};
-  asset.scenes.push_back(scene);
-  return asset;
+  return SinglePrimitiveAsset(prim, "capped_cone", "cone");
 }
 
 }  // namespace
