@@ -108,6 +108,8 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double cr
   std::vector<Vec3> out;
   if (!(spacing > 0.0)) return out;
   std::vector<Vec3> normal(static_cast<std::size_t>(mesh.num_faces()));
+  // Segments per edge of each triangle's grid of samples (0: too small for a grid).
+  std::vector<int> grid(static_cast<std::size_t>(mesh.num_faces()), 0);
   std::map<std::pair<Index, Index>, std::vector<Index>> edges;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
@@ -123,6 +125,7 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double cr
         std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
     if (!(longest > 2.0 * spacing)) continue;
     const int n_grid = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
+    grid[static_cast<std::size_t>(f)] = n_grid;
     for (int i = 1; i < n_grid; ++i) {
       for (int j = 1; i + j < n_grid; ++j) {
         const double s = double(i) / n_grid, t = double(j) / n_grid;
@@ -151,16 +154,14 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double cr
     // overshoot the crease (RiggedSimple's cap rim, docs/characters.md). Rows parallel to the
     // sharp edge, h apart (their points spaced like the grid), fill the gap.
     for (Index f : e.second) {
+      const int n_grid = grid[static_cast<std::size_t>(f)];
+      if (n_grid == 0) continue;  // no grid inside: no gap to fill
       const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
       Index third = v[0];
       for (int k = 0; k < 3; ++k) {
         if (v[k] != e.first.first && v[k] != e.first.second) third = v[k];
       }
       const Vec3& c = mesh.positions[third];
-      const double longest =
-          std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
-      if (!(longest > 2.0 * spacing)) continue;  // no grid inside: no gap to fill
-      const int n_grid = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
       const double base = glm::length(b - a);
       const double height = base > 0.0 ? glm::length(glm::cross(b - a, c - a)) / base : 0.0;
       const double gap = height / n_grid;
