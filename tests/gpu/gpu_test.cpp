@@ -535,7 +535,7 @@ TEST_CASE("gpu: RiggedFigure through its clip at bound and level 8", "[data]") {
 TEST_CASE("gpu: Fox through its clip at bound and level 8", "[data]") {
   CompareCharacter("Fox.glb");
 }
-TEST_CASE("gpu: CesiumMan through its clip at bound and level 8", "[data]") {
+TEST_CASE("gpu: CesiumMan through its clip at bound and level 8", "[data][heavy]") {
   CompareCharacter("CesiumMan.glb");
 }
 

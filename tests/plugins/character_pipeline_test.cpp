@@ -190,7 +190,7 @@ TEST_CASE("pipeline: RiggedFigure fit, exported bound and lod, judged", "[pipeli
 TEST_CASE("pipeline: Fox fit, exported bound and lod, judged", "[pipeline][data]") {
   CheckCharacterPipeline("Fox.glb");
 }
-TEST_CASE("pipeline: CesiumMan fit, exported bound and lod, judged", "[pipeline][data]") {
+TEST_CASE("pipeline: CesiumMan fit, exported bound and lod, judged", "[pipeline][data][heavy]") {
   CheckCharacterPipeline("CesiumMan.glb");
 }
 

@@ -420,7 +420,7 @@ TEST_CASE("Corrupt meshopt and Draco data fail with the file and the JSON pointe
 }
 
 TEST_CASE("A gltfpack-style meshopt file and a Draco file of CesiumMan fit like the original",
-          "[gltf][compression][fit][data]") {
+          "[gltf][compression][fit][data][heavy]") {
   const std::string source = std::string(kSharedGltfDir) + "CesiumMan.glb";
   if (!fs::exists(source)) {
     WARN("skipped: " << source << " is absent (../shared/data)");

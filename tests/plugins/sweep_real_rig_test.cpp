@@ -91,7 +91,8 @@ double SmallestRadius(const Surface& rest, const Surface& posed, const Vec3& p, 
   return smallest;
 }
 
-TEST_CASE("sweep: the two-bone glTF rig bends and twists without losing volume or radius") {
+TEST_CASE("sweep: the two-bone glTF rig bends and twists without losing volume or radius",
+          "[heavy]") {
   // Tests run from the repository root (ctest WORKING_DIRECTORY).
   const std::string path = "../shared/data/gltf/RiggedSimple.glb";
   if (!std::filesystem::exists(path)) {

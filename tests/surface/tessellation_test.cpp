@@ -86,7 +86,8 @@ TEST_CASE("the largest dihedral angle halves when the level doubles (no crease)"
   }
 }
 
-TEST_CASE("bunny control mesh: watertight, vertices reproduced, smooth", "[tessellation][data]") {
+TEST_CASE("bunny control mesh: watertight, vertices reproduced, smooth",
+          "[tessellation][data][heavy]") {
   const std::string path = "../shared/data/scans/bunny-npm-1839v.obj";
   if (!std::filesystem::exists(path)) {
     WARN("skipped: " << path << " not found (the shared data folder is absent)");

@@ -417,7 +417,8 @@ Asset CappedCone() {
 
 }  // namespace
 
-TEST_CASE("character: rows of samples beside a crease keep the surface from overshooting it") {
+TEST_CASE("character: rows of samples beside a crease keep the surface from overshooting it",
+          "[heavy]") {
   const Asset cone = CappedCone();
   REQUIRE(ValidateAsset(cone).ok());
   CharacterFitOptions options;

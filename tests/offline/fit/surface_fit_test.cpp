@@ -317,7 +317,7 @@ TEST_CASE("fit: bad inputs give clear errors") {
   CHECK(s.code() == StatusCode::kUnsupported);
 }
 
-TEST_CASE("fit: the Stanford bunny with 540 control vertices") {
+TEST_CASE("fit: the Stanford bunny with 540 control vertices", "[heavy]") {
   const std::string path = "../shared/data/scans/stanford-bunny.obj";
   if (!std::ifstream(path)) {
     WARN("skipped: " << path << " not found (run from the repo root with ../shared/data)");
