@@ -101,6 +101,9 @@ struct Chain {
   // blended with other chains gets the bump at its share); `fold_beta` = the bump at
   // kFoldSamples points per bin.
   std::vector<double> section, bumped, fold_beta;
+  // Per joint and bin, int b and int b^2 over the bin; per joint, sum_i A_i (1 - c_rest) times
+  // the part of bin i on the rest arc (the rest zone's arc loss / pi).
+  std::vector<double> bin_b1, bin_b2, rest_loss;
   double length() const { return s.back(); }
   std::size_t bones() const { return len.size(); }
 };
@@ -300,25 +303,30 @@ void EvalTrajectory(const Chain& c, const ChainGeom& g, double s, Vec3* pos, Vec
 /// k: a few fixed-point steps solve with them.
 double BumpHeight(const Chain& c, std::size_t j, bool clamp_folds) {
   const double w = c.w[j];
-  const double hp = std::min(c.pose.h[j], w), hr = std::min(c.rest.h[j], w);
-  const double cp = ArcCompression(c.pose.theta[j]), cr = ArcCompression(c.rest.theta[j]);
+  const double hp = std::min(c.pose.h[j], w);
+  const double cp = ArcCompression(c.pose.theta[j]);
   const double du = 2.0 * w / kBumpBins;
   const double* area = &c.section[j * kBumpBins];
   const double* gain = &c.bumped[j * kBumpBins];
-  double qa = 0.0, qb = 0.0, qc = 0.0;
+  const double* bin_b1 = &c.bin_b1[j * kBumpBins];
+  const double* bin_b2 = &c.bin_b2[j * kBumpBins];
+  double qa = 0.0, qb = 0.0, loss = 0.0;
   for (int i = 0; i < kBumpBins; ++i) {
     const double u0 = -w + i * du, u1 = u0 + du;
-    // The parts of the bin on the posed and on the rest arc.
+    // The part of the bin on the posed arc: whole, none, or (at most two bins) a part.
     const double p0 = std::clamp(u0, -hp, hp), p1 = std::clamp(u1, -hp, hp);
-    const double r0 = std::clamp(u0, -hr, hr), r1 = std::clamp(u1, -hr, hr);
-    const double b1 = BumpIntegralTo(u1, w) - BumpIntegralTo(u0, w) -
-                      (1.0 - cp) * (BumpIntegralTo(p1, w) - BumpIntegralTo(p0, w));
-    const double b2 = BumpSquaredIntegralTo(u1, w) - BumpSquaredIntegralTo(u0, w) -
-                      (1.0 - cp) * (BumpSquaredIntegralTo(p1, w) - BumpSquaredIntegralTo(p0, w));
-    qa += gain[i] * b2;
-    qb += gain[i] * b1;
-    qc += area[i] * ((1.0 - cr) * (r1 - r0) - (1.0 - cp) * (p1 - p0));
+    double in1 = 0.0, in2 = 0.0;
+    if (p0 == u0 && p1 == u1) {
+      in1 = bin_b1[i], in2 = bin_b2[i];
+    } else if (p1 > p0) {
+      in1 = BumpIntegralTo(p1, w) - BumpIntegralTo(p0, w);
+      in2 = BumpSquaredIntegralTo(p1, w) - BumpSquaredIntegralTo(p0, w);
+    }
+    qa += gain[i] * (bin_b2[i] - (1.0 - cp) * in2);
+    qb += gain[i] * (bin_b1[i] - (1.0 - cp) * in1);
+    loss += area[i] * (1.0 - cp) * (p1 - p0);
   }
+  const double qc = c.rest_loss[j] - loss;
   auto root = [&](double extra) {
     const double disc = qb * qb - qa * (qc + extra);
     return qa > 0.0 && disc >= 0.0 ? (-qb + std::sqrt(disc)) / qa : 0.0;
@@ -476,6 +484,9 @@ void SweepDeformer::MeasureBumpSections() {
     c.section.assign(nj * kBumpBins, 1.0);
     c.bumped.assign(nj * kBumpBins, 1.0);
     c.fold_beta.assign(nj * kBumpBins * kFoldSamples, 0.0);
+    c.bin_b1.assign(nj * kBumpBins, 0.0);
+    c.bin_b2.assign(nj * kBumpBins, 0.0);
+    c.rest_loss.assign(nj, 0.0);
     for (std::size_t j = 1; j + 1 < nj; ++j) {
       const double w = c.w[j];
       if (!(w > 0.0)) continue;
@@ -498,7 +509,14 @@ void SweepDeformer::MeasureBumpSections() {
         c.bumped[j * kBumpBins + static_cast<std::size_t>(i)] = area * share[ci][src] / n[from];
       }
       const double du = 2.0 * w / kBumpBins;
+      const double hr = std::min(c.rest.h[j], w), cr = ArcCompression(c.rest.theta[j]);
       for (int i = 0; i < kBumpBins; ++i) {
+        const double u0 = -w + i * du, u1 = u0 + du;
+        const std::size_t at = j * kBumpBins + static_cast<std::size_t>(i);
+        c.bin_b1[at] = BumpIntegralTo(u1, w) - BumpIntegralTo(u0, w);
+        c.bin_b2[at] = BumpSquaredIntegralTo(u1, w) - BumpSquaredIntegralTo(u0, w);
+        c.rest_loss[j] +=
+            c.section[at] * (1.0 - cr) * (std::clamp(u1, -hr, hr) - std::clamp(u0, -hr, hr));
         for (int q = 0; q < kFoldSamples; ++q) {
           const double u = -w + (i + (q + 0.5) / kFoldSamples) * du;
           c.fold_beta[(j * kBumpBins + static_cast<std::size_t>(i)) * kFoldSamples +
