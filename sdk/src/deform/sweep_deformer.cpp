@@ -13,8 +13,9 @@
 //   weight transition reaches); each twist is the swing-twist residue of the joint's rotation
 //   against the transported frame, unwrapped along the chain and against the previous pose, so
 //   twists past 180 degrees do not flip;
-// - scale sigma (1.5): a sin^2 bump of half-width W around each bent joint, its height solved in
-//   closed form per frame so that the swept volume of the zone (Pappus) equals the rest one,
+// - scale sigma (1.5): a sin^2 bump of half-width W around each bent joint, its height solved
+//   per frame so that the swept volume of the zone (Pappus, over the section profile measured
+//   from the vertices bound there, with what the fold clamp removes) equals the rest one,
 //   never below 0 (a joint straighter than its rest bend is not thinned);
 // - folds (1.6): vertices of the two bones of a bent joint are clamped against its bisector
 //   plane on the inside of the bend.
@@ -43,6 +44,10 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kMinBend = 1e-7;  // radians; below this a joint is straight
+// The volume bump's support is measured in bins along the chain (the section profile of a
+// tapered limb), and the fold clamp's effect is integrated at a few points per bin.
+constexpr int kBumpBins = 32;
+constexpr int kFoldSamples = 4;
 
 /// One evaluated pose of a chain's trajectory (rest or posed).
 struct ChainGeom {
@@ -90,6 +95,15 @@ struct Chain {
   std::vector<double> tau;            // twist per joint
   std::vector<double> prev_tau;
   std::vector<double> k;  // bump height per joint
+  // Per joint, kBumpBins bins over the bump's support [s_j - w_j, s_j + w_j], from the vertices
+  // bound there: `section` = their mean squared radial offset (the section's area / pi),
+  // `bumped` = that times their mean share of this chain (what the bump can add: a vertex
+  // blended with other chains gets the bump at its share); `fold_beta` = the bump at
+  // kFoldSamples points per bin.
+  std::vector<double> section, bumped, fold_beta;
+  // Per joint and bin, int b and int b^2 over the bin; per joint, sum_i A_i (1 - c_rest) times
+  // the part of bin i on the rest arc (the rest zone's arc loss / pi).
+  std::vector<double> bin_b1, bin_b2, rest_loss;
   double length() const { return s.back(); }
   std::size_t bones() const { return len.size(); }
 };
@@ -143,6 +157,16 @@ double BumpIntegral(double a, double w) { return a + (w / kPi) * std::sin(kPi * 
 double BumpSquaredIntegral(double a, double w) {
   return 0.75 * a + (w / kPi) * std::sin(kPi * a / w) +
          (w / (8.0 * kPi)) * std::sin(2.0 * kPi * a / w);
+}
+
+/// int_0^x b(u) du and int_0^x b(u)^2 du for |x| <= w (odd in x).
+double BumpIntegralTo(double x, double w) { return 0.5 * BumpIntegral(x, w); }
+double BumpSquaredIntegralTo(double x, double w) { return 0.5 * BumpSquaredIntegral(x, w); }
+
+/// Area of the part of a disc of radius rho beyond a chord at distance y >= 0 from its centre.
+double DiscSegment(double rho, double y) {
+  if (!(rho > y)) return 0.0;
+  return rho * rho * std::acos(y / rho) - y * std::sqrt(rho * rho - y * y);
 }
 
 /// Blend half-length at joint j for bend theta (docs/notes/sweep.md section 1.6): the arc radius h
@@ -266,6 +290,83 @@ void EvalTrajectory(const Chain& c, const ChainGeom& g, double s, Vec3* pos, Vec
   EvalTrajectoryOnBone(c, g, s, BoneAt(c, s), pos, tangent, transport);
 }
 
+/// Height k of joint j's volume bump in the chain's pose (docs/notes/sweep.md 1.5,
+/// docs/deformation.md "Volume"), before clamping to [0, 1]. Pappus over the bump's support,
+/// bin by bin: the zone's volume / pi is sum_i A_i int_i c + G_i int_i (2 k b + k^2 b^2) c, where
+/// c(u) = c(theta) on the arc [-h, h] and 1 elsewhere, A_i the bin's section and G_i its
+/// bumped section; k solves it equal to the rest zone's sum_i A_i int_i c_rest (quadratic,
+/// closed form; a uniform tube gives the closed form of a centred tube). Past the rest bend the
+/// fold clamp then moves the skin of each side that crossed the bisector plane onto it: on the
+/// straight parts it removes a disc segment beyond y = a cot(theta / 2) toward the inside of
+/// the bend (a the distance from the joint), on the arc it removes the sections' part beyond
+/// the arc's centre (y > R = h cot(theta / 2)), which Pappus counted negatively. Both depend on
+/// k: a few fixed-point steps solve with them.
+double BumpHeight(const Chain& c, std::size_t j, bool clamp_folds) {
+  const double w = c.w[j];
+  const double hp = std::min(c.pose.h[j], w);
+  const double cp = ArcCompression(c.pose.theta[j]);
+  const double du = 2.0 * w / kBumpBins;
+  const double* area = &c.section[j * kBumpBins];
+  const double* gain = &c.bumped[j * kBumpBins];
+  const double* bin_b1 = &c.bin_b1[j * kBumpBins];
+  const double* bin_b2 = &c.bin_b2[j * kBumpBins];
+  double qa = 0.0, qb = 0.0, loss = 0.0;
+  for (int i = 0; i < kBumpBins; ++i) {
+    const double u0 = -w + i * du, u1 = u0 + du;
+    // The part of the bin on the posed arc: whole, none, or (at most two bins) a part.
+    const double p0 = std::clamp(u0, -hp, hp), p1 = std::clamp(u1, -hp, hp);
+    double in1 = 0.0, in2 = 0.0;
+    if (p0 == u0 && p1 == u1) {
+      in1 = bin_b1[i], in2 = bin_b2[i];
+    } else if (p1 > p0) {
+      in1 = BumpIntegralTo(p1, w) - BumpIntegralTo(p0, w);
+      in2 = BumpSquaredIntegralTo(p1, w) - BumpSquaredIntegralTo(p0, w);
+    }
+    qa += gain[i] * (bin_b2[i] - (1.0 - cp) * in2);
+    qb += gain[i] * (bin_b1[i] - (1.0 - cp) * in1);
+    loss += area[i] * (1.0 - cp) * (p1 - p0);
+  }
+  const double qc = c.rest_loss[j] - loss;
+  auto root = [&](double extra) {
+    const double disc = qb * qb - qa * (qc + extra);
+    return qa > 0.0 && disc >= 0.0 ? (-qb + std::sqrt(disc)) / qa : 0.0;
+  };
+  double k = root(0.0);
+  const double theta = c.pose.theta[j];
+  if (!clamp_folds || !(theta > c.rest.theta[j] + 1e-9) || !(hp > 0.0)) return k;
+  const double cot = 1.0 / std::tan(0.5 * theta), arc_radius = hp * cot;
+  // No section reaches the arc's centre line, even with the largest bump: nothing is clamped.
+  double widest = 0.0;
+  for (int i = 0; i < kBumpBins; ++i) widest = std::max(widest, area[i]);
+  if (4.0 * widest <= arc_radius * arc_radius) return k;
+  const double* beta = &c.fold_beta[j * kBumpBins * kFoldSamples];
+  auto fold = [&](double kk) {  // volume / pi the clamp adds (negative: removes)
+    double sum = 0.0;
+    for (int i = 0; i < kBumpBins; ++i) {
+      if (!(area[i] > 0.0)) continue;
+      const double r = std::sqrt(area[i]), share = gain[i] / area[i];
+      for (int q = 0; q < kFoldSamples; ++q) {
+        const double u = -w + (i + (q + 0.5) / kFoldSamples) * du, au = std::fabs(u);
+        const double rho = (1.0 + kk * beta[i * kFoldSamples + q]) * r;
+        double t = 0.0;
+        if (au < hp) {
+          if (rho > arc_radius) {
+            const double e = rho * rho - arc_radius * arc_radius;
+            t = (theta / (2.0 * hp)) *
+                ((2.0 / 3.0) * e * std::sqrt(e) - arc_radius * DiscSegment(rho, arc_radius));
+          }
+        } else {
+          t = -DiscSegment(rho, au * cot);
+        }
+        sum += share * t;
+      }
+    }
+    return sum * du / (kFoldSamples * kPi);
+  };
+  for (int it = 0; it < 4; ++it) k = root(fold(std::clamp(k, 0.0, 1.0)));
+  return k;
+}
+
 class SweepDeformer final : public Deformer {
  public:
   Status Build(const SkinRig& rig, const Vec3* rest, const Vec3* normals,
@@ -284,6 +385,8 @@ class SweepDeformer final : public Deformer {
 
  private:
   void MakeChains(const std::vector<SweepChain>& chains);
+  /// Chain::section, bumped and fold_beta from the bindings.
+  void MeasureBumpSections();
   /// The sweep's image of a bound vertex (`x`, with the volume bump and the fold clamp), the
   /// rotation of its frame relative to the rest frame at its point (`rotation`) and its image
   /// without the bump and the clamp (`rigid`: the rest offset carried rigidly by that frame).
@@ -351,6 +454,76 @@ void SweepDeformer::MakeChains(const std::vector<SweepChain>& chains) {
     c.pose.Resize(nj);
     for (std::size_t i = 0; i < nj; ++i) c.rest.p[i] = sc.points[i];
     chains_.push_back(std::move(c));
+  }
+}
+
+void SweepDeformer::MeasureBumpSections() {
+  // Per chain and bin: bound vertices, sum of squared radial offsets, sum of chain shares.
+  std::vector<std::vector<double>> count(chains_.size()), r2(chains_.size()), share(chains_.size());
+  for (std::size_t ci = 0; ci < chains_.size(); ++ci) {
+    const std::size_t bins = chains_[ci].joints.size() * kBumpBins;
+    count[ci].assign(bins, 0.0);
+    r2[ci].assign(bins, 0.0);
+    share[ci].assign(bins, 0.0);
+  }
+  for (const Binding& b : bindings_) {
+    const Chain& c = chains_[b.chain];
+    for (std::size_t j = 1; j + 1 < c.joints.size(); ++j) {
+      const double w = c.w[j], u = b.s - c.s[j];
+      if (!(w > 0.0) || std::fabs(u) >= w) continue;
+      const int bin = std::min(kBumpBins - 1, static_cast<int>((u + w) / (2.0 * w) * kBumpBins));
+      const std::size_t at = j * kBumpBins + static_cast<std::size_t>(bin);
+      count[b.chain][at] += 1.0;
+      r2[b.chain][at] += glm::dot(b.radial, b.radial);
+      share[b.chain][at] += b.weight;
+    }
+  }
+  for (std::size_t ci = 0; ci < chains_.size(); ++ci) {
+    Chain& c = chains_[ci];
+    const std::size_t nj = c.joints.size();
+    c.section.assign(nj * kBumpBins, 1.0);
+    c.bumped.assign(nj * kBumpBins, 1.0);
+    c.fold_beta.assign(nj * kBumpBins * kFoldSamples, 0.0);
+    c.bin_b1.assign(nj * kBumpBins, 0.0);
+    c.bin_b2.assign(nj * kBumpBins, 0.0);
+    c.rest_loss.assign(nj, 0.0);
+    for (std::size_t j = 1; j + 1 < nj; ++j) {
+      const double w = c.w[j];
+      if (!(w > 0.0)) continue;
+      const double* n = &count[ci][j * kBumpBins];
+      // An empty bin takes its nearest bound neighbour's values (the lower one on a tie); a
+      // support with no bound vertex keeps a uniform tube (nothing there moves anyway).
+      for (int i = 0; i < kBumpBins; ++i) {
+        int from = -1;
+        for (int d = 0; d < kBumpBins && from < 0; ++d) {
+          if (i - d >= 0 && n[i - d] > 0.0) {
+            from = i - d;
+          } else if (i + d < kBumpBins && n[i + d] > 0.0) {
+            from = i + d;
+          }
+        }
+        if (from < 0) break;
+        const std::size_t src = j * kBumpBins + static_cast<std::size_t>(from);
+        const double area = r2[ci][src] / n[from];
+        c.section[j * kBumpBins + static_cast<std::size_t>(i)] = area;
+        c.bumped[j * kBumpBins + static_cast<std::size_t>(i)] = area * share[ci][src] / n[from];
+      }
+      const double du = 2.0 * w / kBumpBins;
+      const double hr = std::min(c.rest.h[j], w), cr = ArcCompression(c.rest.theta[j]);
+      for (int i = 0; i < kBumpBins; ++i) {
+        const double u0 = -w + i * du, u1 = u0 + du;
+        const std::size_t at = j * kBumpBins + static_cast<std::size_t>(i);
+        c.bin_b1[at] = BumpIntegralTo(u1, w) - BumpIntegralTo(u0, w);
+        c.bin_b2[at] = BumpSquaredIntegralTo(u1, w) - BumpSquaredIntegralTo(u0, w);
+        c.rest_loss[j] +=
+            c.section[at] * (1.0 - cr) * (std::clamp(u1, -hr, hr) - std::clamp(u0, -hr, hr));
+        for (int q = 0; q < kFoldSamples; ++q) {
+          const double u = -w + (i + (q + 0.5) / kFoldSamples) * du;
+          c.fold_beta[(j * kBumpBins + static_cast<std::size_t>(i)) * kFoldSamples +
+                      static_cast<std::size_t>(q)] = Bump(u, w);
+        }
+      }
+    }
   }
 }
 
@@ -596,6 +769,7 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
     direct_[v] = bindings_.size() - first_[v] == 1 && loose_used == 0 ? 1 : 0;
   }
   first_[count] = static_cast<std::uint32_t>(bindings_.size());
+  MeasureBumpSections();
   for (Chain& c : chains_) {
     c.pose = c.rest;
     c.prev_tau.reserve(c.joints.size());
@@ -661,23 +835,11 @@ Status SweepDeformer::SetPose(const glm::dmat4* m) {
       c.tau[i] = tau;
     }
     c.prev_tau.assign(c.tau.begin(), c.tau.end());
-    // Volume: bump heights solving  int (1 + k b)^2 c ds = the zone's rest volume, where the
-    // arc compresses [s_j - h, s_j + h] by c(theta) (Pappus), in closed form.
+    // Volume: bump heights keeping the zone's rest volume, where the arc compresses
+    // [s_j - h, s_j + h] by c(theta) (Pappus), over the measured sections and with what the
+    // fold clamp removes (BumpHeight).
     for (std::size_t j = 1; j + 1 < nj; ++j) {
-      c.k[j] = 0.0;
-      const double w = c.w[j];
-      if (!(w > 0.0)) continue;
-      const double hp = std::min(c.pose.h[j], w), hr = std::min(c.rest.h[j], w);
-      const double cp = ArcCompression(c.pose.theta[j]);
-      const double cr = ArcCompression(c.rest.theta[j]);
-      const double i1 = BumpIntegral(hp, w), i2 = BumpSquaredIntegral(hp, w);
-      const double f1 = BumpIntegral(w, w), f2 = BumpSquaredIntegral(w, w);
-      const double qa = cp * i2 + (f2 - i2);
-      const double qb = cp * i1 + (f1 - i1);
-      const double target = cr * 2.0 * hr + 2.0 * (w - hr);
-      const double qc = cp * 2.0 * hp + 2.0 * (w - hp) - target;
-      const double disc = qb * qb - qa * qc;
-      if (qa > 0.0 && disc >= 0.0) c.k[j] = (-qb + std::sqrt(disc)) / qa;
+      c.k[j] = c.w[j] > 0.0 ? BumpHeight(c, j, options_.clamp_folds) : 0.0;
       // Bounded: near a full fold the arc compresses the zone to nothing and k would balloon a
       // slender limb. Never below 0: a joint straighter than its rest bend (an A-pose elbow
       // straightened, a paw bent at rest) lengthens a centred tube's zone, but the real skin
