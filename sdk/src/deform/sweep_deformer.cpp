@@ -104,6 +104,9 @@ struct Chain {
   // Per joint and bin, int b and int b^2 over the bin; per joint, sum_i A_i (1 - c_rest) times
   // the part of bin i on the rest arc (the rest zone's arc loss / pi).
   std::vector<double> bin_b1, bin_b2, rest_loss;
+  // For the fold term, per joint and bin: sqrt(section) (the section's radius) and bumped /
+  // section (the mean chain share); per joint, the largest section.
+  std::vector<double> bin_radius, bin_share, widest;
   double length() const { return s.back(); }
   std::size_t bones() const { return len.size(); }
 };
@@ -336,18 +339,17 @@ double BumpHeight(const Chain& c, std::size_t j, bool clamp_folds) {
   if (!clamp_folds || !(theta > c.rest.theta[j] + 1e-9) || !(hp > 0.0)) return k;
   const double cot = 1.0 / std::tan(0.5 * theta), arc_radius = hp * cot;
   // No section reaches the arc's centre line, even with the largest bump: nothing is clamped.
-  double widest = 0.0;
-  for (int i = 0; i < kBumpBins; ++i) widest = std::max(widest, area[i]);
-  if (4.0 * widest <= arc_radius * arc_radius) return k;
+  if (4.0 * c.widest[j] <= arc_radius * arc_radius) return k;
   const double* beta = &c.fold_beta[j * kBumpBins * kFoldSamples];
+  const double* radius = &c.bin_radius[j * kBumpBins];
+  const double* bin_share = &c.bin_share[j * kBumpBins];
   auto fold = [&](double kk) {  // volume / pi the clamp adds (negative: removes)
     double sum = 0.0;
     for (int i = 0; i < kBumpBins; ++i) {
       if (!(area[i] > 0.0)) continue;
-      const double r = std::sqrt(area[i]), share = gain[i] / area[i];
       for (int q = 0; q < kFoldSamples; ++q) {
         const double u = -w + (i + (q + 0.5) / kFoldSamples) * du, au = std::fabs(u);
-        const double rho = (1.0 + kk * beta[i * kFoldSamples + q]) * r;
+        const double rho = (1.0 + kk * beta[i * kFoldSamples + q]) * radius[i];
         double t = 0.0;
         if (au < hp) {
           if (rho > arc_radius) {
@@ -358,7 +360,7 @@ double BumpHeight(const Chain& c, std::size_t j, bool clamp_folds) {
         } else {
           t = -DiscSegment(rho, au * cot);
         }
-        sum += share * t;
+        sum += bin_share[i] * t;
       }
     }
     return sum * du / (kFoldSamples * kPi);
@@ -487,6 +489,9 @@ void SweepDeformer::MeasureBumpSections() {
     c.bin_b1.assign(nj * kBumpBins, 0.0);
     c.bin_b2.assign(nj * kBumpBins, 0.0);
     c.rest_loss.assign(nj, 0.0);
+    c.bin_radius.assign(nj * kBumpBins, 1.0);
+    c.bin_share.assign(nj * kBumpBins, 1.0);
+    c.widest.assign(nj, 1.0);
     for (std::size_t j = 1; j + 1 < nj; ++j) {
       const double w = c.w[j];
       if (!(w > 0.0)) continue;
@@ -510,9 +515,13 @@ void SweepDeformer::MeasureBumpSections() {
       }
       const double du = 2.0 * w / kBumpBins;
       const double hr = std::min(c.rest.h[j], w), cr = ArcCompression(c.rest.theta[j]);
+      c.widest[j] = 0.0;
       for (int i = 0; i < kBumpBins; ++i) {
         const double u0 = -w + i * du, u1 = u0 + du;
         const std::size_t at = j * kBumpBins + static_cast<std::size_t>(i);
+        c.widest[j] = std::max(c.widest[j], c.section[at]);
+        c.bin_radius[at] = std::sqrt(c.section[at]);
+        c.bin_share[at] = c.section[at] > 0.0 ? c.bumped[at] / c.section[at] : 0.0;
         c.bin_b1[at] = BumpIntegralTo(u1, w) - BumpIntegralTo(u0, w);
         c.bin_b2[at] = BumpSquaredIntegralTo(u1, w) - BumpSquaredIntegralTo(u0, w);
         c.rest_loss[j] +=
