@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "dermis/offline/fit/surface_fit.h"
+#include "dermis/offline/fit/surface_projection.h"
 #include "dermis/offline/geometry/builtin_meshes.h"
 #include "dermis/surface/surface_evaluator.h"
 #include "test_meshes.h"
@@ -110,8 +111,11 @@ TEST_CASE("control fit: recovers the control mesh whose surface was sampled") {
     std::uniform_real_distribution<double> u(-0.05, 0.05);
     for (Vec3& p : x) p += Vec3(u(rng), u(rng), u(rng));
     const double start = MaxDistance(x, truth);
+    // The point distance at fixed parameters: a least-squares problem whose minimum is the truth.
     ControlFitOptions options;
     options.threads = 1;
+    options.tangent_weight = 1.0;
+    options.tangent_damping = 0.0;
     REQUIRE(FitControlPositions(*cs.domain, points, fits, options, &x).ok());
     const double one_step = MaxDistance(x, truth);
     for (int it = 0; it < 20; ++it) {
@@ -121,6 +125,56 @@ TEST_CASE("control fit: recovers the control mesh whose surface was sampled") {
               << MaxDistance(x, truth));
     CHECK(one_step < 0.1 * start);
     CHECK(MaxDistance(x, truth) < 1e-9);
+  }
+}
+
+TEST_CASE("control fit: with parameters off along the surface the tangent weight keeps its shape") {
+  // Points on the domain surface of the truth, each given a parameter moved along the surface
+  // (by up to 0.06 of a face): the point distance pulls the surface to put every point at the
+  // wrong parameter and bends it off the points; measured across the surface only, the
+  // residuals are (to second order) zero and the step leaves the surface on the points.
+  for (const char* name : {"prism7", "torus"}) {
+    PolygonMesh mesh = Builtin(name);
+    Perturb(&mesh, 0.05, 3);
+    const ControlSurface cs = Build(mesh);
+    const std::vector<Vec3> truth = cs.control.positions;
+    std::vector<Vec3> points;
+    std::vector<PointFit> fits;
+    SampleDomain(cs, truth, 8, &points, &fits);
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<double> u(-0.06, 0.06);
+    for (PointFit& f : fits) f.uv = glm::clamp(f.uv + Vec2(u(rng), u(rng)), Vec2(0.0), Vec2(1.0));
+    // The largest distance from the points to the domain surface of x (closest points found
+    // from each point's true parameter cell, so the search starts in the right basin).
+    auto worst_distance = [&](const std::vector<Vec3>& x) {
+      std::vector<LocalPatch> patches(x.size());
+      cs.domain->FitPatches(x.data(), patches.data());
+      std::vector<Vec3> unused;
+      std::vector<PointFit> exact;
+      SampleDomain(cs, truth, 8, &unused, &exact);
+      double worst = 0.0;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        Index face = exact[i].face;
+        Vec2 uv = exact[i].uv;
+        worst = std::max(worst, ClosestPointOnSurface(*cs.domain, patches.data(), nullptr,
+                                                      points[i], &face, &uv));
+      }
+      return worst;
+    };
+    double after[2];
+    for (int k = 0; k < 2; ++k) {
+      std::vector<Vec3> x = truth;
+      ControlFitOptions options;
+      options.threads = 1;
+      options.tangent_weight = k == 0 ? 1.0 : 0.01;
+      options.tangent_damping = 0.0;
+      REQUIRE(FitControlPositions(*cs.domain, points, fits, options, &x).ok());
+      after[k] = worst_distance(x);
+    }
+    INFO(name << ": largest distance after one step, point distance " << after[0]
+              << ", tangent weight 0.01 " << after[1]);
+    CHECK(worst_distance(truth) < 1e-9);
+    CHECK(after[1] < 0.25 * after[0]);
   }
 }
 

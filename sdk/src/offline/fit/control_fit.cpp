@@ -2,7 +2,9 @@
 // Control-vertex positions fitted to the data by linear least squares on the blended domain
 // surface (Yoon Eq. 2 and 4 with d = 0; docs/fitting.md "Control-vertex fit"). The surface is
 // linear in the control positions at a fixed parameter, so one step is a sparse symmetric
-// solve (Eigen's SimplicialLDLT) of the normal equations, assembled face by face.
+// solve (Eigen's SimplicialLDLT) of the normal equations, assembled face by face. Residuals are
+// weighted mostly across the surface (tangent-distance minimisation, Wang, Pottmann and Liu
+// 2006), which couples a vertex's three coordinates: the unknowns are 3 per vertex.
 #include "dermis/offline/fit/control_fit.h"
 
 #include <Eigen/SparseCholesky>
@@ -126,7 +128,8 @@ double RobustCutoff(const std::vector<double>& residual, const std::vector<Vec3>
 }
 
 // One face's share of the normal equations: the distinct vertices of its stencils, a dense
-// block (vertices^2, row-major) and the right-hand sides (3 per vertex).
+// block over their coordinates ((3 vertices)^2, row-major, unknown 3i + c is coordinate c of
+// vertex i) and the right-hand sides (3 per vertex).
 struct FaceBlock {
   std::vector<Index> vertices;
   std::vector<double> ata;
@@ -134,17 +137,24 @@ struct FaceBlock {
 };
 
 // The blocks of every face, each accumulated over the face's points in order (parallel over
-// faces), each point weighted by its robust weight.
+// faces), each point weighted by its robust weight. A point's residual r = Q(z) - p is
+// measured as r^T M r, M = t I + (1 - t) n n^T (n the domain surface's unit normal at z, t the
+// tangent weight): t = 1 is the point distance, t < 1 lets the surface slide along itself
+// (in faces with a boundary vertex t = 1).
 std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vector<Vec3>& points,
                                   const std::vector<PointFit>& fits,
+                                  const std::vector<Vec3>& normals,
                                   const std::vector<std::size_t>& start,
                                   const std::vector<std::size_t>& order,
-                                  const std::vector<double>& residual, double cutoff, int threads) {
+                                  const std::vector<double>& residual, double cutoff,
+                                  double tangent_weight, int threads) {
   const Index nf = domain.num_faces();
   std::vector<FaceBlock> blocks(static_cast<std::size_t>(nf));
   ParallelFor(threads, static_cast<std::size_t>(nf), [&](std::size_t b, std::size_t e) {
     std::vector<std::pair<Index, double>> st;
     std::vector<double> row;
+    std::vector<std::size_t> nonzero;
+    std::vector<double> scalar;
     for (std::size_t face = b; face < e; ++face) {
       if (start[face] == start[face + 1]) continue;
       FaceBlock& blk = blocks[face];
@@ -160,9 +170,18 @@ std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vecto
       std::sort(blk.vertices.begin(), blk.vertices.end());
       blk.vertices.erase(std::unique(blk.vertices.begin(), blk.vertices.end()), blk.vertices.end());
       const std::size_t m = blk.vertices.size();
-      blk.ata.assign(m * m, 0.0);
-      blk.atb.assign(3 * m, 0.0);
+      const std::size_t m3 = 3 * m;
+      blk.ata.assign(m3 * m3, 0.0);
+      blk.atb.assign(m3, 0.0);
+      scalar.assign(m * m, 0.0);
       row.assign(m, 0.0);
+      // Beside a boundary the residual keeps its tangent part: sliding along the surface there
+      // would let the boundary of the domain surface retract from the data's.
+      double tw = tangent_weight;
+      for (int a = 0; a < 4; ++a) {
+        const Index v = domain.topology().face_vertex(static_cast<Index>(face), a);
+        if (domain.topology().is_boundary_vertex(v)) tw = 1.0;
+      }
       for (std::size_t k = start[face]; k < start[face + 1]; ++k) {
         const PointFit& f = fits[order[k]];
         st.clear();
@@ -172,16 +191,50 @@ std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vecto
           const auto it = std::lower_bound(blk.vertices.begin(), blk.vertices.end(), v);
           row[static_cast<std::size_t>(it - blk.vertices.begin())] += w;
         }
+        nonzero.clear();
+        for (std::size_t i = 0; i < m; ++i) {
+          if (row[i] != 0.0) nonzero.push_back(i);
+        }
         const double r = residual[k];
         const double weight = r > cutoff ? (cutoff / r) * (cutoff / r) : 1.0;
         const Vec3& p = points[order[k]];
-        for (std::size_t i = 0; i < m; ++i) {
-          if (row[i] == 0.0) continue;
-          const double wi = weight * row[i];
-          for (std::size_t j = 0; j < m; ++j) blk.ata[i * m + j] += wi * row[j];
-          blk.atb[3 * i] += wi * p.x, blk.atb[3 * i + 1] += wi * p.y,
-              blk.atb[3 * i + 2] += wi * p.z;
+        const Vec3& n = normals[k];
+        // w^T M w with M = t I + (1 - t) n n^T: the scalar t part on the vertex pairs, and the
+        // rank-one part (w (x) n)(w (x) n)^T on the coordinates, both on the upper triangle.
+        const double wt = weight * tw;
+        const double wn = weight * (1.0 - tw);
+        const double np = glm::dot(n, p);
+        for (std::size_t a = 0; a < nonzero.size(); ++a) {
+          const std::size_t i = nonzero[a];
+          double* srow = scalar.data() + i * m;
+          for (std::size_t q = a; q < nonzero.size(); ++q) {
+            srow[nonzero[q]] += wt * row[i] * row[nonzero[q]];
+          }
+          for (int c = 0; c < 3; ++c) {
+            const double ui = wn * row[i] * n[c];
+            blk.atb[3 * i + static_cast<std::size_t>(c)] += row[i] * (wt * p[c] + wn * n[c] * np);
+            double* out = blk.ata.data() + (3 * i + static_cast<std::size_t>(c)) * m3;
+            for (int d = c; d < 3; ++d)
+              out[3 * i + static_cast<std::size_t>(d)] += ui * row[i] * n[d];
+            for (std::size_t q = a + 1; q < nonzero.size(); ++q) {
+              const std::size_t j = nonzero[q];
+              const double uij = ui * row[j];
+              out[3 * j] += uij * n.x, out[3 * j + 1] += uij * n.y, out[3 * j + 2] += uij * n.z;
+            }
+          }
         }
+      }
+      // The full block: the scalar part on every coordinate, the lower triangle mirrored.
+      for (std::size_t i = 0; i < m; ++i) {
+        for (std::size_t j = i; j < m; ++j) {
+          for (int c = 0; c < 3; ++c) {
+            blk.ata[(3 * i + static_cast<std::size_t>(c)) * m3 + 3 * j +
+                    static_cast<std::size_t>(c)] += scalar[i * m + j];
+          }
+        }
+      }
+      for (std::size_t x = 0; x < m3; ++x) {
+        for (std::size_t y = x + 1; y < m3; ++y) blk.ata[y * m3 + x] = blk.ata[x * m3 + y];
       }
     }
   });
@@ -189,24 +242,28 @@ std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vecto
 }
 
 // Assembles the blocks in face order, damps every vertex towards its current position in
-// proportion to its data weight, and solves (SimplicialLDLT); writes the new positions.
+// proportion to its data weight (more along the surface than across it, `vertex_normals` the
+// unit normals, empty: the same in every direction), and solves (SimplicialLDLT over the 3 nv
+// coordinates); writes the new positions.
 Status SolveDamped(const std::vector<FaceBlock>& blocks, const ControlFitOptions& options,
-                   std::vector<Vec3>* positions) {
+                   const std::vector<Vec3>& vertex_normals, std::vector<Vec3>* positions) {
   const Index nv = static_cast<Index>(positions->size());
   std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv, 3);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(nv));
   std::vector<double> diagonal(static_cast<std::size_t>(nv), 0.0);
   for (const FaceBlock& blk : blocks) {
-    const std::size_t m = blk.vertices.size();
-    for (std::size_t i = 0; i < m; ++i) {
-      for (std::size_t j = 0; j < m; ++j) {
-        const double a = blk.ata[i * m + j];
-        if (a != 0.0) triplets.emplace_back(blk.vertices[i], blk.vertices[j], a);
+    const std::size_t m3 = 3 * blk.vertices.size();
+    for (std::size_t i = 0; i < m3; ++i) {
+      const Index gi = 3 * blk.vertices[i / 3] + static_cast<Index>(i % 3);
+      for (std::size_t j = 0; j < m3; ++j) {
+        const double a = blk.ata[i * m3 + j];
+        if (a != 0.0) {
+          triplets.emplace_back(gi, 3 * blk.vertices[j / 3] + static_cast<Index>(j % 3), a);
+        }
       }
-      diagonal[static_cast<std::size_t>(blk.vertices[i])] += blk.ata[i * m + i];
-      for (int c = 0; c < 3; ++c) {
-        rhs(blk.vertices[i], c) += blk.atb[3 * i + static_cast<std::size_t>(c)];
-      }
+      // A vertex's data weight: the mean of its three diagonal entries.
+      diagonal[static_cast<std::size_t>(blk.vertices[i / 3])] += blk.ata[i * m3 + i] / 3.0;
+      rhs(gi) += blk.atb[i];
     }
   }
   double mean_diag = 0.0;
@@ -217,21 +274,31 @@ Status SolveDamped(const std::vector<FaceBlock>& blocks, const ControlFitOptions
     // A floor of a hundredth of the mean keeps vertices with little data well conditioned.
     const double mu =
         std::max(options.damping * diagonal[static_cast<std::size_t>(v)], 0.01 * mean_diag);
-    triplets.emplace_back(v, v, mu);
     const Vec3& x = (*positions)[v];
-    rhs(v, 0) += mu * x.x, rhs(v, 1) += mu * x.y, rhs(v, 2) += mu * x.z;
+    // Along the surface (across the vertex normal n) the pull is at least tangent_damping of
+    // the data weight: mt I + (mu - mt) n n^T.
+    const double mt = std::max(options.tangent_damping * diagonal[static_cast<std::size_t>(v)], mu);
+    const Vec3 n = vertex_normals.empty() ? Vec3(0.0) : vertex_normals[static_cast<std::size_t>(v)];
+    for (int c = 0; c < 3; ++c) {
+      for (int d = 0; d < 3; ++d) {
+        const double a = (c == d ? mt : 0.0) + (mu - mt) * n[c] * n[d];
+        if (a != 0.0) triplets.emplace_back(3 * v + c, 3 * v + d, a);
+        rhs(3 * v + c) += a * x[d];
+      }
+    }
   }
-  Eigen::SparseMatrix<double> ata(nv, nv);
+  const Eigen::Index n = 3 * static_cast<Eigen::Index>(nv);
+  Eigen::SparseMatrix<double> ata(n, n);
   ata.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(ata);
   if (solver.info() != Eigen::Success) {
     return Status::InvalidInput("control fit: the normal equations could not be factored");
   }
-  const Eigen::MatrixXd x = solver.solve(rhs);
+  const Eigen::VectorXd x = solver.solve(rhs);
   if (solver.info() != Eigen::Success || !x.allFinite()) {
     return Status::InvalidInput("control fit: the normal equations could not be solved");
   }
-  for (Index v = 0; v < nv; ++v) (*positions)[v] = Vec3(x(v, 0), x(v, 1), x(v, 2));
+  for (Index v = 0; v < nv; ++v) (*positions)[v] = Vec3(x(3 * v), x(3 * v + 1), x(3 * v + 2));
   return Status::Ok();
 }
 
@@ -250,9 +317,28 @@ Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>
   const int threads = ResolveThreadCount(options.threads);
   const std::vector<double> residual = Residuals(domain, points, fits, order, *positions, threads);
   const double cutoff = RobustCutoff(residual, points, options.robust_cutoff);
-  const std::vector<FaceBlock> blocks =
-      FaceBlocks(domain, points, fits, start, order, residual, cutoff, threads);
-  return SolveDamped(blocks, options, positions);
+  // The domain surface's normal at each point's parameter and each vertex's one-ring normal
+  // (needed only where the residual or the damping depends on the direction).
+  std::vector<Vec3> normals(order.size(), Vec3(0.0, 0.0, 1.0));
+  std::vector<Vec3> vertex_normals;
+  const double tangent_weight = std::clamp(options.tangent_weight, 0.0, 1.0);
+  if (tangent_weight < 1.0 || options.tangent_damping > options.damping) {
+    std::vector<LocalPatch> patches(static_cast<std::size_t>(nv));
+    domain.FitPatches(positions->data(), patches.data());
+    for (const LocalPatch& lp : patches) vertex_normals.push_back(lp.fallback_normal);
+    ParallelFor(threads, order.size(), [&](std::size_t b, std::size_t e) {
+      for (std::size_t k = b; k < e; ++k) {
+        const PointFit& f = fits[order[k]];
+        SurfacePoint sp;
+        if (EvaluateSurface(domain, patches.data(), nullptr, f.face, f.uv, &sp)) {
+          normals[k] = sp.normal;
+        }
+      }
+    });
+  }
+  const std::vector<FaceBlock> blocks = FaceBlocks(domain, points, fits, normals, start, order,
+                                                   residual, cutoff, tangent_weight, threads);
+  return SolveDamped(blocks, options, vertex_normals, positions);
 }
 
 }  // namespace dermis

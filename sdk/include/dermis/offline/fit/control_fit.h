@@ -11,7 +11,9 @@
 /// fixed parameter z, because each patch P_a is the fit operator applied to X (Eq. 2). So
 /// min_X sum_i |Q(z_i; X) - p_i|^2 is a sparse linear least-squares problem; alternated with
 /// reprojection it is the classic parameter-correction scheme (Hoppe et al. 1994; Marinov and
-/// Kobbelt 2004).
+/// Kobbelt 2004). By default each residual is measured mostly across the surface
+/// (ControlFitOptions::tangent_weight, tangent-distance minimisation), which converges much
+/// faster because the surface may slide along itself between reprojections.
 #pragma once
 
 #include <utility>
@@ -41,6 +43,18 @@ struct ControlFitOptions {
   /// get a weight that decays as (cutoff / r)^2 (a Cauchy-like robust loss against
   /// misprojected points); <= 0 turns the robust weights off.
   double robust_cutoff = 8.0;
+  /// Weight of a residual's part along the domain surface against its part across it: each
+  /// point costs r^T (t I + (1 - t) n n^T) r, r = Q(z) - p, n the surface normal at z. 1 is
+  /// the point distance |r|^2, which holds every point to its parameter and converges slowly;
+  /// below 1 the surface may slide along itself and the next round's projection follows
+  /// (tangent-distance minimisation; Wang, Pottmann and Liu 2006). In faces with a boundary
+  /// vertex the point distance is kept, so the surface's boundary stays at the data's.
+  /// docs/fitting.md, "Control-vertex fit" has the measurements behind the default.
+  double tangent_weight = 0.01;
+  /// Damping along the surface: a vertex's move across its one-ring normal is pulled back with
+  /// at least this fraction of its data weight (the larger of this and `damping`), so the
+  /// sliding the tangent weight allows does not skew the control quads. <= damping: none.
+  double tangent_damping = 0.3;
   int threads = 0;  ///< 0: hardware concurrency. Results do not depend on it.
 };
 
