@@ -15,7 +15,8 @@
 //                             [--crease-rows 0|1] [--displacement-levels L] (characters' lod)
 //                             [--control-vertices N] [--torus-vertices N]
 //                             [--control-method remesh|simplify]
-//                             [--density D] [--control-fit ITERATIONS] [--finest-passes P]
+//                             [--density D] [--control-fit ITERATIONS] [--tangent-weight T]
+//                             [--finest-passes P]
 //                             [--smoothing S] [--samples S] [--crease-samples C] [--crease-angle A]
 //                             [--max-turn T] [--repeat R] [--where] [--node-weight W]
 //                             [--budget COEFFICIENTS_PER_POINT]
@@ -183,6 +184,7 @@ struct Settings {
   ControlMeshMethod method = ControlMeshMethod::kRemesh;
   double density = -1.0;          // -1: FitOptions' default
   int control_fit = -1;           // -1: FitOptions' default
+  double tangent_weight = -1.0;   // -1: ControlFitOptions' default
   int finest_passes = -1;         // -1: FitOptions' default
   double smoothing = -1.0;        // -1: FitOptions' default
   double samples = -1.0;          // -1: CharacterFitOptions' default
@@ -201,6 +203,7 @@ void ApplySettings(const Settings& st, FitOptions* options) {
   options->control_method = st.method;
   if (st.density >= 0.0) options->displacement.density = st.density;
   if (st.control_fit >= 0) options->control_fit_iterations = st.control_fit;
+  if (st.tangent_weight >= 0.0) options->control_fit.tangent_weight = st.tangent_weight;
   if (st.finest_passes >= 1) options->displacement.finest_passes = st.finest_passes;
   if (st.smoothing >= 0.0) options->displacement.smoothing = st.smoothing;
   if (st.mba) options->displacement.method = DisplacementMethod::kMba;
@@ -227,6 +230,48 @@ void PrintControlMesh(const char* name, const FitReport& r) {
         "control mesh (%s): seed %d vertices -> isotropic %d vertices -> %d quads + %d "
         "triangles -> split\n",
         name, q.seed_vertices, q.triangle_vertices, q.quads_paired, q.triangles_unpaired);
+  }
+}
+
+// Mean and largest distance from each point to a triangle mesh.
+void MeanMax(const std::vector<Vec3>& points, const TriangleDistanceTree& tree, double scale,
+             double* mean, double* max) {
+  double sum = 0.0, mx = 0.0;
+  for (const Vec3& p : points) {
+    const double d = tree.Query(p).distance / scale;
+    sum += d, mx = std::max(mx, d);
+  }
+  *mean = sum / static_cast<double>(std::max<std::size_t>(points.size(), 1));
+  *max = mx;
+}
+
+// The domain surface (no displacement) and the full surface, tessellated at `level`, against
+// the input mesh in both directions: every input vertex to the surface's triangles and every
+// surface vertex to the input's triangles (mean / max, in the unit where the largest side is 1).
+void PrintSurfaceDistances(const char* name, const FittedSurface& fitted, const PolygonMesh& mesh,
+                           double scale, int level) {
+  TriangleDistanceTree data_tree;
+  data_tree.Build(mesh.positions, TriangulateFan(mesh));
+  TessellationPattern fine;
+  TessellationPattern::Build(fitted.surface.domain->topology(), level, &fine);
+  std::printf("| %s | data -> surface mean / max | surface -> data mean / max | max |\n", name);
+  std::printf("|---|---|---|---|\n");
+  for (int full = 0; full < 2; ++full) {
+    std::unique_ptr<TruncatedDisplacement> none;
+    if (!full) none = std::make_unique<TruncatedDisplacement>(fitted.displacement.get(), 0);
+    const Displacement* disp =
+        full ? static_cast<const Displacement*>(fitted.displacement.get()) : none.get();
+    std::vector<Vec3> x(fine.samples.size());
+    EvaluateSamples(*fitted.surface.domain, fitted.surface.patches.data(), disp,
+                    fine.samples.data(), x.size(), x.data(), nullptr);
+    TriangleDistanceTree surface_tree;
+    surface_tree.Build(x, fine.triangles);
+    double m1 = 0, x1 = 0, m2 = 0, x2 = 0;
+    MeanMax(mesh.positions, surface_tree, scale, &m1, &x1);
+    MeanMax(x, data_tree, scale, &m2, &x2);
+    std::printf("| %s | %.3g / %.3g | %.3g / %.3g | %.3g |\n",
+                full ? "full surface" : "domain surface (0 displacement levels)", m1, x1, m2, x2,
+                std::max(x1, x2));
   }
 }
 
@@ -334,6 +379,10 @@ int RunBunny(const Settings& st) {
       sum / static_cast<double>(n) <= e.mean ? "within" : "ABOVE", mx);
   std::printf("threads 1 and 2 give identical .dsurf bytes (%zu bytes): %s\n", bytes_default.size(),
               identical ? "yes" : "NO");
+  std::printf(
+      "surfaces tessellated at level 16 against the scan's triangles (every vertex, held-out "
+      "ones too):\n");
+  PrintSurfaceDistances("bunny", fitted, mesh, report.scale, 16);
   if (!report.displacement_fit.trial.empty()) {
     std::printf(
         "stopping rule (validation split of the fitted points, mean |D - p| in the unit "
@@ -364,18 +413,6 @@ int RunBunny(const Settings& st) {
   std::printf("control mesh build alone: %.3f s CPU (median of %d; min %.3f, max %.3f)\n",
               cpu[cpu.size() / 2], st.repeat, cpu.front(), cpu.back());
   return 0;
-}
-
-// Mean and largest distance from each point to a triangle mesh.
-void MeanMax(const std::vector<Vec3>& points, const TriangleDistanceTree& tree, double scale,
-             double* mean, double* max) {
-  double sum = 0.0, mx = 0.0;
-  for (const Vec3& p : points) {
-    const double d = tree.Query(p).distance / scale;
-    sum += d, mx = std::max(mx, d);
-  }
-  *mean = sum / static_cast<double>(std::max<std::size_t>(points.size(), 1));
-  *max = mx;
 }
 
 int RunTorus(const Settings& st) {
@@ -414,35 +451,12 @@ int RunTorus(const Settings& st) {
     std::fprintf(stderr, "bench_fit: torus: %s\n", s.message().c_str());
     return 1;
   }
-  TriangleDistanceTree data_tree;
-  data_tree.Build(mesh.positions, TriangulateFan(mesh));
-  const int level = 24;
-  TessellationPattern fine;
-  TessellationPattern::Build(fitted.surface.domain->topology(), level, &fine);
   std::printf(
       "torus: %zu points, %lld control vertices (%lld quads), unit: largest side 1 (%.4g model "
-      "units); surface tessellated at level %d\n",
+      "units); surface tessellated at level 24\n",
       mesh.positions.size(), static_cast<long long>(report.control_vertices),
-      static_cast<long long>(report.control_faces), report.scale, level);
-  std::printf("| torus | data -> surface mean / max | surface -> data mean / max | max |\n");
-  std::printf("|---|---|---|---|\n");
-  for (int full = 0; full < 2; ++full) {
-    std::unique_ptr<TruncatedDisplacement> none;
-    if (!full) none = std::make_unique<TruncatedDisplacement>(fitted.displacement.get(), 0);
-    const Displacement* disp =
-        full ? static_cast<const Displacement*>(fitted.displacement.get()) : none.get();
-    std::vector<Vec3> x(fine.samples.size());
-    EvaluateSamples(*fitted.surface.domain, fitted.surface.patches.data(), disp,
-                    fine.samples.data(), x.size(), x.data(), nullptr);
-    TriangleDistanceTree surface_tree;
-    surface_tree.Build(x, fine.triangles);
-    double m1 = 0, x1 = 0, m2 = 0, x2 = 0;
-    MeanMax(mesh.positions, surface_tree, report.scale, &m1, &x1);
-    MeanMax(x, data_tree, report.scale, &m2, &x2);
-    std::printf("| %s | %.3g / %.3g | %.3g / %.3g | %.3g |\n",
-                full ? "full surface" : "domain surface (0 displacement levels)", m1, x1, m2, x2,
-                std::max(x1, x2));
-  }
+      static_cast<long long>(report.control_faces), report.scale);
+  PrintSurfaceDistances("torus", fitted, mesh, report.scale, 24);
   PrintControlMesh("torus", report);
   return 0;
 }
@@ -675,6 +689,8 @@ int main(int argc, char** argv) {
       st.density = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--control-fit") == 0 && i + 1 < argc) {
       st.control_fit = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--tangent-weight") == 0 && i + 1 < argc) {
+      st.tangent_weight = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--finest-passes") == 0 && i + 1 < argc) {
       st.finest_passes = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--smoothing") == 0 && i + 1 < argc) {
