@@ -61,6 +61,25 @@ double MaxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return d;
 }
 
+// A perturbed built-in control mesh, its surface, and points on that surface at a grid of
+// face coordinates (SampleDomain, n = 8) with their exact parameters.
+struct SampledSurface {
+  ControlSurface cs;
+  std::vector<Vec3> truth;
+  std::vector<Vec3> points;
+  std::vector<PointFit> fits;
+};
+
+SampledSurface SampleBuiltin(const char* name) {
+  PolygonMesh mesh = Builtin(name);
+  Perturb(&mesh, 0.05, 3);
+  SampledSurface s;
+  s.cs = Build(mesh);
+  s.truth = s.cs.control.positions;
+  SampleDomain(s.cs, s.truth, 8, &s.points, &s.fits);
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("control fit: the stencil reproduces the domain surface") {
@@ -98,13 +117,11 @@ TEST_CASE("control fit: the stencil reproduces the domain surface") {
 
 TEST_CASE("control fit: recovers the control mesh whose surface was sampled") {
   for (const char* name : {"house", "prism7", "grid"}) {
-    PolygonMesh mesh = Builtin(name);
-    Perturb(&mesh, 0.05, 3);
-    const ControlSurface cs = Build(mesh);
-    const std::vector<Vec3> truth = cs.control.positions;
-    std::vector<Vec3> points;
-    std::vector<PointFit> fits;
-    SampleDomain(cs, truth, 8, &points, &fits);
+    const SampledSurface sampled = SampleBuiltin(name);
+    const ControlSurface& cs = sampled.cs;
+    const std::vector<Vec3>& truth = sampled.truth;
+    const std::vector<Vec3>& points = sampled.points;
+    const std::vector<PointFit>& fits = sampled.fits;
     // Start away from the truth; each damped step is a contraction towards it.
     std::vector<Vec3> x = truth;
     std::mt19937 rng(5);
@@ -134,13 +151,11 @@ TEST_CASE("control fit: with parameters off along the surface the tangent weight
   // wrong parameter and bends it off the points; measured across the surface only, the
   // residuals are (to second order) zero and the step leaves the surface on the points.
   for (const char* name : {"prism7", "torus"}) {
-    PolygonMesh mesh = Builtin(name);
-    Perturb(&mesh, 0.05, 3);
-    const ControlSurface cs = Build(mesh);
-    const std::vector<Vec3> truth = cs.control.positions;
-    std::vector<Vec3> points;
-    std::vector<PointFit> fits;
-    SampleDomain(cs, truth, 8, &points, &fits);
+    SampledSurface sampled = SampleBuiltin(name);
+    const ControlSurface& cs = sampled.cs;
+    const std::vector<Vec3>& truth = sampled.truth;
+    const std::vector<Vec3>& points = sampled.points;
+    std::vector<PointFit>& fits = sampled.fits;
     std::mt19937 rng(13);
     std::uniform_real_distribution<double> u(-0.06, 0.06);
     for (PointFit& f : fits) f.uv = glm::clamp(f.uv + Vec2(u(rng), u(rng)), Vec2(0.0), Vec2(1.0));
