@@ -11,6 +11,7 @@
 
 #include "dermis/dsurf/dsurf.h"
 #include "dermis/offline/build/control_mesh.h"
+#include "dermis/offline/fit/point_fit.h"
 #include "dermis/offline/fit/surface_projection.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/offline/io/point_input.h"
@@ -189,6 +190,39 @@ TEST_CASE("fit: a bumpy sphere over a cube control mesh is recovered") {
     worst = std::max(worst, std::abs(r - glm::length(Bumpy(theta, phi, 0.05))));
   }
   CHECK(worst < 5e-3);
+}
+
+TEST_CASE("fit: FitPoints without chart samples gives the same parameters") {
+  // The control-vertex fit's rounds and the held-out points skip the per-chart projections
+  // (PointFitOptions::chart_samples); the parameters, statuses and deltas must not change.
+  const PolygonMesh dense = BumpySphereMesh(40, 20, 0.05);
+  ControlSurface surface;
+  REQUIRE(BuildControlSurface(Cube(0.62), DomainOptions(), &surface).ok());
+  PointFitOptions with, without;
+  with.threads = without.threads = 2;
+  with.tolerance = without.tolerance = 1e-9;
+  without.chart_samples = false;
+  std::vector<PointFit> a, b;
+  FitPoints(surface, dense.positions, with, &a);
+  FitPoints(surface, dense.positions, without, &b);
+  REQUIRE(a.size() == dense.positions.size());
+  REQUIRE(b.size() == a.size());
+  int optimized = 0, sampled = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    INFO("point " << i);
+    CHECK(a[i].status == b[i].status);
+    CHECK(a[i].face == b[i].face);
+    CHECK(a[i].uv == b[i].uv);
+    CHECK(a[i].delta == b[i].delta);
+    CHECK(a[i].projected_face == b[i].projected_face);
+    CHECK(a[i].num_optimized == b[i].num_optimized);
+    CHECK(b[i].num_projected == 0);
+    optimized += a[i].status == PointFitStatus::kOptimized;
+    sampled += a[i].num_projected > 0;
+  }
+  // The comparison means something: most points were optimised and had chart samples.
+  CHECK(optimized > static_cast<int>(a.size()) * 9 / 10);
+  CHECK(sampled > static_cast<int>(a.size()) * 9 / 10);
 }
 
 TEST_CASE("fit: a control-mesh target equal to the full split keeps every triangle") {

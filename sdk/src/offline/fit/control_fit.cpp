@@ -28,10 +28,10 @@ void AppendPatchStencil(const ManifoldDomain& domain, Index v, Vec2 z, double we
   const int n = domain.patch_ring_size(v);
   const Index* ring = domain.patch_ring(v);
   const double* op = domain.patch_operator(v);
+  // Exponents 0..2 (kPatchMonomials): products, not std::pow.
+  const double xs[3] = {1.0, z.x, z.x * z.x}, ys[3] = {1.0, z.y, z.y * z.y};
   double mono[8];
-  for (int m = 0; m < 8; ++m) {
-    mono[m] = std::pow(z.x, kPatchMonomials[m][0]) * std::pow(z.y, kPatchMonomials[m][1]);
-  }
+  for (int m = 0; m < 8; ++m) mono[m] = xs[kPatchMonomials[m][0]] * ys[kPatchMonomials[m][1]];
   double centre = 1.0;
   for (int k = 0; k < n; ++k) {
     double c = 0.0;

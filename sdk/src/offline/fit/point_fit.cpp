@@ -86,7 +86,7 @@ void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std
   r.projected_uv = uv1;
   r.delta = SignedDistance(patches[v0], z0, p);
   // The other corners: transition, then a few Newton steps on their own patch.
-  for (int a = 0; a < 4; ++a) {
+  for (int a = 0; a < 4 && options.chart_samples; ++a) {
     const Index va = domain.topology().face_vertex(face1, a);
     Vec2 za = va == v0 ? z0 : domain.FaceToChart(face1, a, uv1);
     if (va != v0) za = ProjectOntoPatch(patches[va], p, za, 3);

@@ -154,6 +154,9 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   PointFitOptions pf;
   pf.threads = rep.threads;
   pf.tolerance = 1e-9 * rep.scale;
+  // The control-vertex fit's rounds and the held-out points need the parameters only.
+  PointFitOptions pf_parameters = pf;
+  pf_parameters.chart_samples = false;
   std::vector<PointFit> fits;
   // A built control mesh lies on the data; moving its vertices so that the smooth domain
   // surface follows the data leaves far smaller displacements at sharp and thin features. A
@@ -166,7 +169,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     cf.threads = rep.threads;
     std::vector<Vec3> x = fitted.surface.control.positions;
     for (int it = 0; it < options.control_fit_iterations; ++it) {
-      FitPoints(fitted.surface, fit_points, pf, &fits);
+      FitPoints(fitted.surface, fit_points, pf_parameters, &fits);
       // A round that cannot be solved (no usable data) leaves the positions of the last one.
       if (!FitControlPositions(domain, fit_points, fits, cf, &x).ok()) break;
       fitted.surface.control.positions = x;
@@ -293,7 +296,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   // E2: held-out points, seeded by the same projection and optimisation on the domain.
   if (!holdout_points.empty()) {
     std::vector<PointFit> hfits;
-    FitPoints(fitted.surface, holdout_points, pf, &hfits);
+    FitPoints(fitted.surface, holdout_points, pf_parameters, &hfits);
     std::vector<double> eh(hfits.size(), -1.0);
     ParallelFor(threads, hfits.size(), [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {

@@ -49,6 +49,10 @@ struct PointFitOptions {
   int threads = 0;           ///< 0: hardware concurrency.
   bool optimize = true;      ///< false: projection only (the paper's "without optimization").
   double tolerance = 1e-10;  ///< Residual of the common-displacement solve, model units.
+  /// false: the parameter, status and delta only; the per-chart projections of the face's other
+  /// corners (`PointFit::projected`, a few Newton steps each) are skipped. The parameters are the
+  /// same either way; the control-vertex fit's rounds need nothing else.
+  bool chart_samples = true;
 };
 
 /// Projects every point (paper section 4): closest control face, its nearest corner, Newton on
