@@ -6,12 +6,14 @@ function(dermis_set_warnings target)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
   if(DERMIS_SANITIZE)
-    # -O1, as AddressSanitizer's documentation advises: the Debug build's -O0 ran the sanitized
-    # suite three times slower (docs/reliability.md, "Sanitizers in CI"); assertions and debug
-    # information stay. GCC 12 then warns -Wmaybe-uninitialized inside libstdc++'s <regex>
-    # (Catch's main) under ASan, a false positive: that warning is checked by the other builds.
+    # -Og: the Debug build's -O0 ran the sanitized suite three times slower, and -O1 (what
+    # AddressSanitizer's documentation advises) made this the longest build of CI; GCC's -Og
+    # compiles the instrumented code in about half -O1's time (docs/reliability.md, "Sanitizers
+    # in CI"). Assertions and debug information stay. GCC 12 then warns -Wmaybe-uninitialized
+    # inside libstdc++'s <regex> (Catch's main) under ASan, a false positive: that warning is
+    # checked by the other builds.
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
-                                             -fno-sanitize-recover=all -O1)
+                                             -fno-sanitize-recover=all -Og)
     if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
       target_compile_options(${target} PRIVATE -Wno-maybe-uninitialized)
     endif()
