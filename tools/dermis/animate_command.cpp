@@ -24,7 +24,7 @@
 namespace dermis::cli {
 namespace {
 
-constexpr const char* kCommand = "animate";
+constexpr const char* kAnimateCommand = "animate";
 
 struct AnimateArgs {
   std::string input;
@@ -81,32 +81,35 @@ Status WritePosedObj(const std::string& path, const CharacterPoser& poser,
 int RunAnimate(const AnimateArgs& a) {
   const bool to_stdout = IsStdout(a.output);
   if (!a.format.empty() && !to_stdout) {
-    return Usage(kCommand, "--format applies to '-o -' (stdout); a file's format is its extension");
+    return Usage(kAnimateCommand,
+                 "--format applies to '-o -' (stdout); a file's format is its extension");
   }
   const bool obj = to_stdout ? a.format == "obj" : LowerExtension(a.output) == ".obj";
   if (!to_stdout && !obj && !IsGltfPath(a.output)) {
-    return Usage(kCommand, a.output + ": the output must be .obj, .glb or .gltf (or - for stdout)");
+    return Usage(kAnimateCommand,
+                 a.output + ": the output must be .obj, .glb or .gltf (or - for stdout)");
   }
   Character ch;
   Status s = ReadCharacter(a.input, &ch);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kAnimateCommand, s);
   int clip = -1;
   s = ResolveClip(ch.asset, a.input, a.clip, &clip);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kAnimateCommand, s);
   if (clip < 0 && a.time_given && a.time != 0.0) {
-    return Fail(kCommand, Status::InvalidInput(
-                              a.input + ": --time applies to a clip, not to the rest pose (" +
-                              ClipList(ch.asset) + ")"));
+    return Fail(
+        kAnimateCommand,
+        Status::InvalidInput(a.input + ": --time applies to a clip, not to the rest pose (" +
+                             ClipList(ch.asset) + ")"));
   }
   CharacterPoseOptions options;
   s = MakePoseOptions(a.deformer, a.mode, a.level, a.displacement_levels, a.threads, &options);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kAnimateCommand, s);
   // Progress: the rest evaluation and the output have no count (a stage and its time), the
   // clip's pose steps have one.
-  ProgressBar progress(kCommand, a.quiet);
+  ProgressBar progress(kAnimateCommand, a.quiet);
   const auto fail = [&progress](const Status& status) {
     progress.Clear();  // the message on a line of its own
-    return Fail(kCommand, status);
+    return Fail(kAnimateCommand, status);
   };
   progress.Update("evaluating the rest surface", 0, 0);
   CharacterPoser poser;
@@ -144,7 +147,7 @@ int RunAnimate(const AnimateArgs& a) {
     }
   }
   progress.Clear();
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kAnimateCommand, s);
   if (!a.quiet) {
     std::size_t vertices = 0;
     for (const PosedPrimitive& p : posed) vertices += p.positions.size();
@@ -208,7 +211,7 @@ void AddAnimateCommand(CLI::App* app, std::function<int()>* run) {
   AddQuietFlag(cmd, &args->quiet);
   CLI::Option* time = cmd->get_option("--time");
   SetRunWithOutputs(
-      cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
+      cmd, run, kAnimateCommand, [args] { return std::vector<std::string>{args->output}; },
       [args] { return RunAnimate(*args); }, [args, time] { args->time_given = time->count() > 0; },
       /*stdout_ok=*/true);
 }

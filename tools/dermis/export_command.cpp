@@ -22,7 +22,7 @@
 namespace dermis::cli {
 namespace {
 
-constexpr const char* kCommand = "export";
+constexpr const char* kExportCommand = "export";
 
 struct ExportArgs {
   std::string input;
@@ -100,20 +100,20 @@ Status Bake(const ExportArgs& a, const Character& ch, Asset* out, CharacterBakeR
                    24.0 * static_cast<double>(frames * vertices) / 1e6);
     }
   }
-  ProgressBar bar(kCommand, a.quiet);
+  ProgressBar bar(kExportCommand, a.quiet);
   return BuildBakedAsset(&poser, a.fps, out, report, bar.Callback());
 }
 
 int RunExport(const ExportArgs& a) {
   const bool to_stdout = a.output == "-";
   if (!to_stdout && !IsGltfPath(a.output)) {
-    return Usage(kCommand,
+    return Usage(kExportCommand,
                  a.output + ": the output must be .glb or .gltf (or - for a GLB on stdout)");
   }
   std::string bytes;
   Character ch;
   Status s = ReadCharacter(a.input, &ch, nullptr, &bytes);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kExportCommand, s);
   CharacterExportOptions options;
   options.level = a.level;
   options.displacement_levels = a.displacement_levels;
@@ -127,7 +127,7 @@ int RunExport(const ExportArgs& a) {
   } else {
     s = BuildLodAsset(ch, options, &out, &notes);
   }
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kExportCommand, s);
   GltfExportOptions gltf;
   gltf.max_influences = a.max_influences;
   gltf.generator = std::string("Dermis ") + DERMIS_VERSION;
@@ -139,14 +139,14 @@ int RunExport(const ExportArgs& a) {
     // `-o -`: the GLB on stdout, written only once it is complete (nothing half-written).
     std::string glb;
     s = SerializeGltf(out, gltf, /*binary=*/true, &glb, &packing);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kExportCommand, s);
     if (std::fwrite(glb.data(), 1, glb.size(), stdout) != glb.size() || std::fflush(stdout) != 0) {
-      return Fail(kCommand, Status::IoError("<stdout>: write failed"));
+      return Fail(kExportCommand, Status::IoError("<stdout>: write failed"));
     }
   } else {
     MakeParentFolder(a.output);
     s = ExportGltf(out, gltf, a.output, &packing);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kExportCommand, s);
   }
   if (!a.quiet) {
     for (const std::string& n : notes) std::fprintf(stderr, "dermis export: note: %s\n", n.c_str());
@@ -217,7 +217,7 @@ void AddExportCommand(CLI::App* app, std::function<int()>* run) {
   AddThreadsOption(cmd, &args->threads, "--bake-sweep: ");
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
-      cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
+      cmd, run, kExportCommand, [args] { return std::vector<std::string>{args->output}; },
       [args] { return RunExport(*args); }, nullptr, /*stdout_ok=*/true);
 }
 

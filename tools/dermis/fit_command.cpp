@@ -25,7 +25,7 @@
 namespace dermis::cli {
 namespace {
 
-constexpr const char* kCommand = "fit";
+constexpr const char* kFitCommand = "fit";
 
 struct FitArgs {
   std::string input;
@@ -237,7 +237,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
 int RunFitCharacter(const FitArgs& a) {
   ImportedAsset imported;
   Status s = Importers().ImportAsset(a.input, &imported);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kFitCommand, s);
   const Asset& asset = imported.asset;
   const std::string& embedded = imported.embedded_dsurf;
   MakeParentFolder(a.output);
@@ -245,9 +245,9 @@ int RunFitCharacter(const FitArgs& a) {
     // A Dermis export with the .dsurf embedded: take it back as it was (lossless).
     Character check;
     s = ParseCharacter(embedded, a.input + ": extension DERMIS_displaced_surface", &check);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kFitCommand, s);
     s = WriteFileAtomically(a.output, embedded);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kFitCommand, s);
     if (!a.quiet) {
       std::fprintf(stderr,
                    "dermis fit: %s carries a Dermis surface (DERMIS_displaced_surface); wrote it "
@@ -261,22 +261,22 @@ int RunFitCharacter(const FitArgs& a) {
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.threads = a.threads;
-  ProgressBar progress(kCommand, a.quiet);
+  ProgressBar progress(kFitCommand, a.quiet);
   options.progress = progress.Callback();
   Character ch;
   CharacterFitReport report;
   s = FitCharacter(asset, options, &ch, &report);
   progress.Clear();
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kFitCommand, s);
   s = WriteFileAtomically(a.output, SerializeCharacter(ch));
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kFitCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
     s = WriteFileAtomically(a.report,
                             CharacterReportJson(a, options, ch, report)
                                     .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
                                 "\n");
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kFitCommand, s);
   }
   if (!a.quiet) {
     std::fprintf(
@@ -312,13 +312,13 @@ int RunFit(const FitArgs& a) {
   PolygonMesh mesh;
   Index dropped = 0;
   Status s = ReadFitInput(a.input, &mesh, &dropped, &Importers());
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kFitCommand, s);
   PolygonMesh control;
   if (!a.control_mesh.empty()) {
     s = ReadObj(a.control_mesh, &control);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kFitCommand, s);
   } else if (mesh.num_faces() == 0) {
-    return Fail(kCommand,
+    return Fail(kFitCommand,
                 Status::InvalidInput(a.input + ": a point cloud (no faces) needs --control-mesh"));
   }
   FitInput input;
@@ -332,26 +332,26 @@ int RunFit(const FitArgs& a) {
   if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
   options.holdout = a.holdout;
   options.threads = a.threads;
-  ProgressBar progress(kCommand, a.quiet);
+  ProgressBar progress(kFitCommand, a.quiet);
   options.progress = progress.Callback();
   FittedSurface fitted;
   FitReport report;
   s = FitSurface(input, options, &fitted, &report);
   progress.Clear();
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kFitCommand, s);
   const std::string bytes =
       SerializeDsurf(*fitted.surface.domain, fitted.surface.control.positions.data(),
                      fitted.displacement.get(), report.points);
   MakeParentFolder(a.output);
   s = WriteFileAtomically(a.output, bytes);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kFitCommand, s);
   if (!a.report.empty()) {
     MakeParentFolder(a.report);
     s = WriteFileAtomically(a.report,
                             ReportJson(a, options, report)
                                     .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
                                 "\n");
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kFitCommand, s);
   }
   if (!a.quiet && !report.control_mesh.fallback.empty()) {
     std::fprintf(stderr, "dermis fit: note: control mesh by simplification: %s\n",
@@ -464,7 +464,7 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
-      cmd, run, kCommand,
+      cmd, run, kFitCommand,
       [args] {
         return std::vector<std::string>{args->output, args->report};
       },

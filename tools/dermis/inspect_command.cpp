@@ -32,7 +32,7 @@
 namespace dermis::cli {
 namespace {
 
-constexpr const char* kCommand = "inspect";
+constexpr const char* kInspectCommand = "inspect";
 
 constexpr const char* kInspectSchema = "dermis.inspect/1";
 
@@ -543,11 +543,12 @@ void PrintText(const Json& report) {
 int RunInspect(const InspectArgs& a) {
   std::error_code ec;
   if (std::filesystem::is_directory(a.input, ec)) {
-    return Fail(kCommand, Status::IoError(a.input + ": is a directory, not a file to inspect"));
+    return Fail(kInspectCommand,
+                Status::IoError(a.input + ": is a directory, not a file to inspect"));
   }
   const std::uintmax_t size = std::filesystem::file_size(a.input, ec);
   if (ec || !std::filesystem::is_regular_file(a.input, ec)) {
-    return Fail(kCommand, Status::IoError(a.input + ": cannot open"));
+    return Fail(kInspectCommand, Status::IoError(a.input + ": cannot open"));
   }
   const std::string ext = LowerExtension(a.input);
   Json report;
@@ -559,7 +560,7 @@ int RunInspect(const InspectArgs& a) {
   report["bytes"] = size;
   const Status s = ext == ".dsurf" ? InspectDsurf(a.input, a.memory_level, &report)
                                    : InspectAssetFile(a.input, a.memory_level, &report);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kInspectCommand, s);
   if (a.json) {
     std::printf("%s\n", report.dump(2, ' ', false, Json::error_handler_t::replace).c_str());
   } else {

@@ -14,7 +14,7 @@
 namespace dermis::cli {
 namespace {
 
-constexpr const char* kCommand = "pack";
+constexpr const char* kPackCommand = "pack";
 
 struct PackArgs {
   std::string input;
@@ -27,25 +27,25 @@ struct PackArgs {
 
 int RunPack(const PackArgs& a) {
   if (LowerExtension(a.output) != ".dsurf") {
-    return Usage(kCommand, a.output +
-                               ": the output must be .dsurf (a runtime archive is a "
-                               "version-4 .dsurf; e.g. NAME.runtime.dsurf)");
+    return Usage(kPackCommand, a.output +
+                                   ": the output must be .dsurf (a runtime archive is a "
+                                   "version-4 .dsurf; e.g. NAME.runtime.dsurf)");
   }
   std::string bytes;
   Character ch;
   std::uint32_t version = 0;
   Status s = ReadCharacter(a.input, &ch, &version, &bytes);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kPackCommand, s);
   RuntimeArchiveOptions options;
   options.quantize_displacements = a.quantize;
   options.keep_source = a.keep_source;
   std::string archive;
   RuntimeArchiveReport report;
   s = BuildRuntimeArchive(ch, options, a.threads, &archive, &report);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kPackCommand, s);
   MakeParentFolder(a.output);
   s = WriteFileAtomically(a.output, archive);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kPackCommand, s);
   if (!a.quiet) {
     const RuntimeArchiveError& e = report.error;
     std::fprintf(
@@ -92,7 +92,7 @@ void AddPackCommand(CLI::App* app, std::function<int()>* run) {
   AddThreadsOption(cmd, &args->threads, "error measurement: ");
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
-      cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
+      cmd, run, kPackCommand, [args] { return std::vector<std::string>{args->output}; },
       [args] { return RunPack(*args); });
 }
 

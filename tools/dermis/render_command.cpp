@@ -28,7 +28,7 @@
 namespace dermis::cli {
 namespace {
 
-constexpr const char* kCommand = "render";
+constexpr const char* kRenderCommand = "render";
 
 struct RenderArgs {
   std::string input;
@@ -232,36 +232,36 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
   const bool error_map = a.heatmap == "error";
   // A plain surface: no pose; the error map needs the data it was fitted to.
   if (a.frames > 0 || !a.clip.empty() || a.time_given || !a.compare.empty()) {
-    return Usage(kCommand, a.input +
-                               " is a surface without a skeleton: --clip, --time, --frames "
-                               "and --compare apply to characters");
+    return Usage(kRenderCommand, a.input +
+                                     " is a surface without a skeleton: --clip, --time, --frames "
+                                     "and --compare apply to characters");
   }
   if (error_map && a.reference.empty()) {
-    return Usage(kCommand,
+    return Usage(kRenderCommand,
                  "--heatmap error on a surface needs --reference MESH (the data it was fitted to)");
   }
   // One surface per displacement level of --series (or the one --displacement-levels).
   std::vector<int> levels = {a.displacement_levels};
   if (!a.series.empty() && !ParseSeries(a.series, &levels)) {
-    return Usage(kCommand,
+    return Usage(kRenderCommand,
                  "--series '" + a.series + "' must list displacement levels -1..16, e.g. 0,2,4");
   }
   std::vector<std::vector<render::Mesh>> surfaces(levels.size());
   for (std::size_t k = 0; k < levels.size(); ++k) {
     const Status s = SurfaceMesh(a, surface, levels[k], &surfaces[k]);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kRenderCommand, s);
   }
   std::vector<std::string> stats(levels.size());
   if (error_map) {
     float range = 0.0f;
     const Status s = ErrorMaps(a, &surfaces, &stats, &range);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kRenderCommand, s);
     view.show_legend = true;
     view.scalar_max = range;  // one scale for every level
     view.legend = "distance to data";
   }
   const int views = std::max(1, a.turntable);
-  ProgressBar bar(kCommand, a.quiet);
+  ProgressBar bar(kRenderCommand, a.quiet);
   for (std::size_t k = 0; k < levels.size(); ++k) {
     if (!a.series.empty()) {
       const std::string name =
@@ -304,10 +304,11 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
   std::vector<std::string> captions;
   int clip = -1;
   Status s = ResolveClip(ch.asset, a.input, a.clip, &clip);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kRenderCommand, s);
   if (clip < 0 && (a.frames > 0 || (a.time_given && a.time != 0.0))) {
-    return Fail(kCommand, Status::InvalidInput(a.input + ": --time and --frames apply to a clip (" +
-                                               ClipList(ch.asset) + ")"));
+    return Fail(kRenderCommand,
+                Status::InvalidInput(a.input + ": --time and --frames apply to a clip (" +
+                                     ClipList(ch.asset) + ")"));
   }
   // One poser per deformer drawn: the primary one, and --compare's as further rows.
   std::vector<std::string> deformers = {a.deformer};
@@ -316,9 +317,9 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
   for (std::size_t k = 0; k < deformers.size(); ++k) {
     CharacterPoseOptions po;
     s = MakePoseOptions(deformers[k], a.mode, a.level, a.displacement_levels, 0, &po);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kRenderCommand, s);
     s = CharacterPoser::Build(ch, po, &posers[k]);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kRenderCommand, s);
   }
   CharacterPoser& poser = posers[0];
   // The times to draw.
@@ -335,7 +336,7 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
   if (error_map) {
     std::vector<PosedPrimitive> rest;
     s = poser.PoseClip(-1, 0.0, a.fps, &rest);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kRenderCommand, s);
     std::vector<render::Mesh> rest_meshes = PosedMeshes(poser, rest);
     std::vector<Vec3> ref;
     std::vector<std::uint32_t> tris;
@@ -351,13 +352,13 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
   }
   std::vector<std::vector<render::Mesh>> frames;
   render::Box box;
-  ProgressBar bar(kCommand, a.quiet);
+  ProgressBar bar(kRenderCommand, a.quiet);
   for (std::size_t k = 0; k < posers.size(); ++k) {
     for (double t : times) {
       bar.Update("posing frames", frames.size(), posers.size() * times.size());
       std::vector<PosedPrimitive> posed;
       s = posers[k].PoseClip(clip, t, a.fps, &posed);
-      if (!s.ok()) return Fail(kCommand, s);
+      if (!s.ok()) return Fail(kRenderCommand, s);
       std::vector<render::Mesh> meshes = PosedMeshes(posers[k], posed);
       std::size_t at = 0;
       for (render::Mesh& m : meshes) {
@@ -397,29 +398,29 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
 int RunRender(const RenderArgs& a) {
   int width = 0, height = 0;
   if (!ParseSize(a.size, &width, &height)) {
-    return Usage(kCommand, "--size '" + a.size + "' must be WxH with 16 <= W, H <= 8192");
+    return Usage(kRenderCommand, "--size '" + a.size + "' must be WxH with 16 <= W, H <= 8192");
   }
   if (LowerExtension(a.output) != ".png")
-    return Usage(kCommand, a.output + ": the output must be a .png file");
+    return Usage(kRenderCommand, a.output + ": the output must be a .png file");
   if (a.frames > 0 && a.turntable > 0)
-    return Usage(kCommand, "--frames and --turntable exclude each other");
+    return Usage(kRenderCommand, "--frames and --turntable exclude each other");
   if (!a.compare.empty() && a.turntable > 0)
-    return Usage(kCommand, "--compare and --turntable exclude each other");
-  if (const int rc = CheckOverwrite(kCommand, {a.output}, a.force); rc != kExitOk) return rc;
+    return Usage(kRenderCommand, "--compare and --turntable exclude each other");
+  if (const int rc = CheckOverwrite(kRenderCommand, {a.output}, a.force); rc != kExitOk) return rc;
   std::string bytes;
   {
     const Status s = ReadFileBytes(a.input, "the input", &bytes);
-    if (!s.ok()) return Fail(kCommand, s);
+    if (!s.ok()) return Fail(kRenderCommand, s);
   }
   if (DsurfFileVersion(bytes) == 0) {
-    return Fail(kCommand,
+    return Fail(kRenderCommand,
                 Status::InvalidInput(a.input + ": not a .dsurf file (fit a mesh or character "
                                                "with 'dermis fit' first)"));
   }
   Character ch;
   std::uint32_t version = 0;
   if (const Status s = ParseCharacter(bytes, a.input, &ch, &version); !s.ok())
-    return Fail(kCommand, s);
+    return Fail(kRenderCommand, s);
   render::View view;
   view.width = width;
   view.height = height;
@@ -440,7 +441,7 @@ int RunRender(const RenderArgs& a) {
       char suffix[32];
       std::snprintf(suffix, sizeof(suffix), "_%03zu.png", k);
       const Status s = render::WritePng(stem + suffix, images[k]);
-      if (!s.ok()) return Fail(kCommand, s);
+      if (!s.ok()) return Fail(kRenderCommand, s);
     }
   }
   // Default layout: one row per deformer with --compare, else about square.
@@ -451,7 +452,7 @@ int RunRender(const RenderArgs& a) {
           : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(images.size()))));
   const render::Image out = images.size() == 1 ? images[0] : render::ContactSheet(images, columns);
   const Status s = render::WritePng(a.output, out);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kRenderCommand, s);
   if (!a.quiet) {
     std::fprintf(
         stderr, "dermis render: %zu view%s, %dx%d%s\nwrote %s\n", images.size(),

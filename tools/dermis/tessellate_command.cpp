@@ -23,7 +23,7 @@
 namespace dermis::cli {
 namespace {
 
-constexpr const char* kCommand = "tessellate";
+constexpr const char* kTessellateCommand = "tessellate";
 
 struct TessellateArgs {
   std::string input;
@@ -49,7 +49,7 @@ Status WriteTessellation(const TessellateArgs& a, const ManifoldDomain& domain,
   std::vector<Vec3> positions(n), normals(n);
   // Progress (docs/cli.md, "Conventions"): the samples evaluated in 64 runs (each sample on
   // its own, so the result is the same), then the output as a stage and its time.
-  ProgressBar progress(kCommand, a.quiet);
+  ProgressBar progress(kTessellateCommand, a.quiet);
   const std::size_t run = std::max<std::size_t>(1, (n + 63) / 64);
   for (std::size_t begin = 0; begin < n; begin += run) {
     progress.Update("evaluating samples", begin, n);
@@ -73,7 +73,7 @@ Status WriteTessellation(const TessellateArgs& a, const ManifoldDomain& domain,
 int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_point t0) {
   DisplacedSurface surface;
   Status s = ReadDsurf(a.input, &surface);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kTessellateCommand, s);
   std::vector<LocalPatch> patches(surface.rest_positions.size());
   surface.domain->FitPatches(surface.rest_positions.data(), patches.data());
   const int available = surface.displacement ? surface.displacement->max_levels() : 0;
@@ -87,7 +87,7 @@ int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_
                         "dermis tessellate " + a.input + " --level " + std::to_string(a.level) +
                             " --displacement-levels " + std::to_string(levels),
                         &nv, &nt);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kTessellateCommand, s);
   if (!a.quiet) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -104,7 +104,7 @@ int RunTessellateDsurf(const TessellateArgs& a, std::chrono::steady_clock::time_
 int RunTessellate(const TessellateArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   if (a.input.empty() == a.builtin.empty()) {
-    return Usage(kCommand, "give exactly one of INPUT or --builtin NAME");
+    return Usage(kTessellateCommand, "give exactly one of INPUT or --builtin NAME");
   }
   if (IsDsurf(a.input)) return RunTessellateDsurf(a, t0);
   PolygonMesh mesh;
@@ -125,7 +125,7 @@ int RunTessellate(const TessellateArgs& a) {
                             ".dsurf, not '" + ext +
                             "' files (fit a glTF or other asset first: dermis fit)");
   }
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kTessellateCommand, s);
   const Index dropped = CompactUnusedVertices(&mesh);
   if (dropped > 0 && !a.quiet) {
     std::fprintf(stderr,
@@ -141,12 +141,12 @@ int RunTessellate(const TessellateArgs& a) {
   options.blend_lb = a.blend_lb;
   ControlSurface surface;
   s = BuildControlSurface(mesh, options, &surface);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kTessellateCommand, s);
   std::size_t nv = 0, nt = 0;
   s = WriteTessellation(
       a, *surface.domain, surface.patches.data(), nullptr,
       "dermis tessellate " + mesh.source_name + " --level " + std::to_string(a.level), &nv, &nt);
-  if (!s.ok()) return Fail(kCommand, s);
+  if (!s.ok()) return Fail(kTessellateCommand, s);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
@@ -188,7 +188,7 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   AddDisplacementLevelsOption(cmd, &args->displacement_levels);
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
-      cmd, run, kCommand, [args] { return std::vector<std::string>{args->output}; },
+      cmd, run, kTessellateCommand, [args] { return std::vector<std::string>{args->output}; },
       [args] { return RunTessellate(*args); }, nullptr, /*stdout_ok=*/true);
 }
 

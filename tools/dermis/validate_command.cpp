@@ -24,7 +24,7 @@
 namespace dermis::cli {
 namespace {
 
-constexpr const char* kCommand = "validate";
+constexpr const char* kValidateCommand = "validate";
 
 struct ValidateArgs {
   std::string input;
