@@ -215,6 +215,7 @@ TEST_CASE("fit: FitPoints without chart samples gives the same parameters") {
     CHECK(a[i].uv == b[i].uv);
     CHECK(a[i].delta == b[i].delta);
     CHECK(a[i].projected_face == b[i].projected_face);
+    CHECK(a[i].projected_uv == b[i].projected_uv);
     CHECK(a[i].num_optimized == b[i].num_optimized);
     CHECK(b[i].num_projected == 0);
     optimized += a[i].status == PointFitStatus::kOptimized;
