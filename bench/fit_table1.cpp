@@ -16,7 +16,7 @@
 //                             [--control-vertices N] [--torus-vertices N]
 //                             [--control-method remesh|simplify]
 //                             [--density D] [--control-fit ITERATIONS] [--tangent-weight T]
-//                             [--tangent-damping D] [--finest-passes P]
+//                             [--tangent-damping D] [--patch-agreement W] [--finest-passes P]
 //                             [--smoothing S] [--samples S] [--crease-samples C] [--crease-angle A]
 //                             [--max-turn T] [--repeat R] [--where] [--node-weight W]
 //                             [--budget COEFFICIENTS_PER_POINT]
@@ -186,6 +186,7 @@ struct Settings {
   int control_fit = -1;           // -1: FitOptions' default
   double tangent_weight = -1.0;   // -1: ControlFitOptions' default
   double tangent_damping = -1.0;  // -1: ControlFitOptions' default
+  double patch_agreement = -1.0;  // -1: ControlFitOptions' default
   int finest_passes = -1;         // -1: FitOptions' default
   double smoothing = -1.0;        // -1: FitOptions' default
   double samples = -1.0;          // -1: CharacterFitOptions' default
@@ -206,6 +207,7 @@ void ApplySettings(const Settings& st, FitOptions* options) {
   if (st.control_fit >= 0) options->control_fit_iterations = st.control_fit;
   if (st.tangent_weight >= 0.0) options->control_fit.tangent_weight = st.tangent_weight;
   if (st.tangent_damping >= 0.0) options->control_fit.tangent_damping = st.tangent_damping;
+  if (st.patch_agreement >= 0.0) options->control_fit.patch_agreement = st.patch_agreement;
   if (st.finest_passes >= 1) options->displacement.finest_passes = st.finest_passes;
   if (st.smoothing >= 0.0) options->displacement.smoothing = st.smoothing;
   if (st.mba) options->displacement.method = DisplacementMethod::kMba;
@@ -695,6 +697,8 @@ int main(int argc, char** argv) {
       st.tangent_weight = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--tangent-damping") == 0 && i + 1 < argc) {
       st.tangent_damping = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--patch-agreement") == 0 && i + 1 < argc) {
+      st.patch_agreement = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--finest-passes") == 0 && i + 1 < argc) {
       st.finest_passes = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--smoothing") == 0 && i + 1 < argc) {

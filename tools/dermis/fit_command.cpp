@@ -38,7 +38,8 @@ struct FitArgs {
   int finest_passes = DisplacementFitOptions{}.finest_passes;
   double smoothing = -1.0;
   int control_fit = -1;  // -1: the library's default for the input kind
-  std::string method;    // empty: the library's default for the input kind
+  double patch_agreement = ControlFitOptions{}.patch_agreement;
+  std::string method;  // empty: the library's default for the input kind
   double node_weight = -1.0;
   double level_smoothing = -1.0;
   double validation = -1.0;
@@ -115,6 +116,7 @@ Json EffectiveOptionsJson(const FitArgs& a, const FitOptions& f) {
   o["control-vertices"] = f.control_vertices;
   if (!a.control_mesh.empty()) o["control-mesh"] = a.control_mesh;
   o["control-fit"] = f.control_fit_iterations;
+  o["patch-agreement"] = f.control_fit.patch_agreement;
   o["holdout"] = f.holdout;
   const DisplacementFitOptions& d = f.displacement;
   o["displacement"] = d.method == DisplacementMethod::kMba ? "mba" : "adaptive";
@@ -330,6 +332,7 @@ int RunFit(const FitArgs& a) {
   options.control_vertices = a.control_vertices;
   ApplyDisplacementArgs(a, &options.displacement);
   if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
+  options.control_fit.patch_agreement = a.patch_agreement;
   options.holdout = a.holdout;
   options.threads = a.threads;
   ProgressBar progress(kFitCommand, a.quiet);
@@ -451,6 +454,12 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "them on the data; default 2 for a surface, 0 for a character; a "
                   "--control-mesh is always used as is)")
       ->check(CLI::Range(0, 16));
+  cmd->add_option("--patch-agreement", args->patch_agreement,
+                  "Control-vertex fit: weight of the corner patches' agreement with each other "
+                  "(makes the fit without per-point optimisation closer, the domain surface "
+                  "farther; docs/fitting.md)")
+      ->check(CLI::Range(0.0, 1e3))
+      ->capture_default_str();
   cmd->add_option("--holdout", args->holdout, "Fraction of points held out to measure error")
       ->check(CLI::Range(0.0, 0.9))
       ->capture_default_str();

@@ -15,6 +15,9 @@
 #include "dermis/offline/fit/surface_fit.h"
 #include "dermis/offline/fit/surface_projection.h"
 #include "dermis/offline/geometry/builtin_meshes.h"
+#include "dermis/surface/blend.h"
+#include "dermis/surface/chart.h"
+#include "dermis/surface/local_patch.h"
 #include "dermis/surface/surface_evaluator.h"
 #include "test_meshes.h"
 
@@ -189,6 +192,113 @@ TEST_CASE("control fit: with parameters off along the surface the tangent weight
     CHECK(worst_distance(truth) < 1e-9);
     CHECK(after[1] < 0.25 * after[0]);
   }
+}
+
+TEST_CASE("control fit: the patch-agreement term is minimised and holds the patches together") {
+  // Points on a differently perturbed surface, at fixed parameters; the fit's objective with
+  // the robust weights off and the point distance is, written with the evaluator (not the
+  // stencils the fit assembles):
+  //   E(X) = sum_i |Q_i(X) - p_i|^2 + w sum_i sum_a psi_a |P_a(z_a; X) - Q_i(X)|^2
+  //          + sum_v mu_v |X_v - X0_v|^2,
+  // mu_v = max(damping d_v, 0.01 mean d), d_v = sum_i (the summed stencil weight of v)^2.
+  // E is quadratic, so central differences are its exact directional derivatives: zero at the
+  // minimiser the fit returns.
+  PolygonMesh mesh = Builtin("prism7");
+  Perturb(&mesh, 0.05, 3);
+  const ControlSurface cs = Build(mesh);
+  const ManifoldDomain& domain = *cs.domain;
+  const Index nv = domain.num_vertices();
+  std::vector<Vec3> other = cs.control.positions;
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-0.08, 0.08);
+  for (Vec3& p : other) p += Vec3(u(rng), u(rng), u(rng));
+  std::vector<Vec3> points;
+  std::vector<PointFit> fits;
+  SampleDomain(cs, other, 5, &points, &fits);
+  const std::vector<Vec3> x0 = cs.control.positions;
+  ControlFitOptions options;
+  options.threads = 2;
+  options.robust_cutoff = 0.0;
+  options.tangent_weight = 1.0;
+  options.tangent_damping = 0.0;
+  // The damping weights, from the stencils' summed weight per vertex.
+  std::vector<double> d(static_cast<std::size_t>(nv), 0.0);
+  for (const PointFit& f : fits) {
+    std::vector<std::pair<Index, double>> st;
+    REQUIRE(DomainSurfaceStencil(domain, f.face, f.uv, &st));
+    std::map<Index, double> row;
+    for (const auto& [v, w] : st) row[v] += w;
+    for (const auto& [v, w] : row) d[static_cast<std::size_t>(v)] += w * w;
+  }
+  double mean_d = 0.0;
+  for (double x : d) mean_d += x / static_cast<double>(nv);
+  // The agreement sum (unweighted) and E at positions x.
+  const double lb = domain.options().blend_lb;
+  auto agreement = [&](const std::vector<Vec3>& x) {
+    std::vector<LocalPatch> patches(x.size());
+    domain.FitPatches(x.data(), patches.data());
+    double sum = 0.0;
+    for (const PointFit& f : fits) {
+      SurfacePoint sp;
+      REQUIRE(EvaluateSurface(domain, patches.data(), nullptr, f.face, f.uv, &sp));
+      for (int a = 0; a < 4; ++a) {
+        const Vec2 cd = FaceToCorner(a, f.uv);
+        if (cd.x >= 1.0 - lb || cd.y >= 1.0 - lb) continue;
+        const double psi = CornerWeight(domain.options().blend_type, lb, cd);
+        PatchJet jet;
+        EvaluatePatch(patches[domain.topology().face_vertex(f.face, a)],
+                      domain.FaceToChart(f.face, a, f.uv), &jet);
+        sum += psi * glm::dot(jet.p - sp.position, jet.p - sp.position);
+      }
+    }
+    return sum;
+  };
+  auto energy = [&](const std::vector<Vec3>& x, double w) {
+    std::vector<LocalPatch> patches(x.size());
+    domain.FitPatches(x.data(), patches.data());
+    double e = w * agreement(x);
+    for (std::size_t i = 0; i < fits.size(); ++i) {
+      SurfacePoint sp;
+      REQUIRE(EvaluateSurface(domain, patches.data(), nullptr, fits[i].face, fits[i].uv, &sp));
+      e += glm::dot(sp.position - points[i], sp.position - points[i]);
+    }
+    for (Index v = 0; v < nv; ++v) {
+      const double mu = std::max(options.damping * d[static_cast<std::size_t>(v)], 0.01 * mean_d);
+      e += mu * glm::dot(x[v] - x0[v], x[v] - x0[v]);
+    }
+    return e;
+  };
+  double disagreement[2];
+  for (int k = 0; k < 2; ++k) {
+    const double w = k == 0 ? 0.0 : 10.0;
+    options.patch_agreement = w;
+    std::vector<Vec3> x = x0;
+    REQUIRE(FitControlPositions(domain, points, fits, options, &x).ok());
+    disagreement[k] = agreement(x);
+    // Directional derivatives of E at the fit's result along random directions, against the
+    // same at the start (where the data pull is large).
+    std::mt19937 dir_rng(40 + k);
+    std::normal_distribution<double> g(0.0, 1.0);
+    const double eps = 1e-3;
+    for (int trial = 0; trial < 4; ++trial) {
+      std::vector<Vec3> dir(x.size());
+      for (Vec3& v : dir) v = Vec3(g(dir_rng), g(dir_rng), g(dir_rng));
+      auto derivative = [&](const std::vector<Vec3>& at) {
+        std::vector<Vec3> plus = at, minus = at;
+        for (std::size_t i = 0; i < at.size(); ++i)
+          plus[i] += eps * dir[i], minus[i] -= eps * dir[i];
+        return (energy(plus, w) - energy(minus, w)) / (2.0 * eps);
+      };
+      const double at_start = derivative(x0);
+      const double at_fit = derivative(x);
+      INFO("weight " << w << ": derivative at the start " << at_start << ", at the fit " << at_fit);
+      CHECK(std::abs(at_fit) < 1e-6 * std::abs(at_start) + 1e-9);
+    }
+  }
+  INFO("patch disagreement without the term " << disagreement[0] << ", with weight 10 "
+                                              << disagreement[1]);
+  CHECK(disagreement[0] > 0.0);
+  CHECK(disagreement[1] < 0.5 * disagreement[0]);
 }
 
 TEST_CASE("control fit: the same result whatever the thread count, and bad sizes refused") {

@@ -42,10 +42,13 @@ void AppendPatchStencil(const ManifoldDomain& domain, Index v, Vec2 z, double we
   out->emplace_back(v, weight * centre);
 }
 
-}  // namespace
-
-bool DomainSurfaceStencil(const ManifoldDomain& domain, Index face, Vec2 uv,
-                          std::vector<std::pair<Index, double>>* out) {
+// Appends the domain surface at (face, uv) as DomainSurfaceStencil() does, and tells where each
+// active corner's terms end in *out (corner_end) and the corner's blend weight psi_a, by which
+// those terms are already multiplied.
+bool CornerStencils(const ManifoldDomain& domain, Index face, Vec2 uv,
+                    std::vector<std::pair<Index, double>>* out, int* num_corners,
+                    std::size_t corner_end[4], double corner_weight[4]) {
+  *num_corners = 0;
   if (!ClampFaceCoordinates(domain, face, &uv)) return false;
   const MeshTopology& topo = domain.topology();
   const Index base = topo.face_offset(face);
@@ -65,8 +68,20 @@ bool DomainSurfaceStencil(const ManifoldDomain& domain, Index face, Vec2 uv,
     Vec2 z;
     ChartMap(domain.chart(v), topo.halfedge_ring_index(h), cd, &z);
     AppendPatchStencil(domain, v, z, psi, out);
+    corner_end[*num_corners] = out->size();
+    corner_weight[(*num_corners)++] = psi;
   }
   return true;
+}
+
+}  // namespace
+
+bool DomainSurfaceStencil(const ManifoldDomain& domain, Index face, Vec2 uv,
+                          std::vector<std::pair<Index, double>>* out) {
+  int nc = 0;
+  std::size_t end[4];
+  double w[4];
+  return CornerStencils(domain, face, uv, out, &nc, end, w);
 }
 
 namespace {
@@ -134,6 +149,7 @@ struct FaceBlock {
   std::vector<Index> vertices;
   std::vector<double> ata;
   std::vector<double> atb;
+  std::vector<double> agree;  // (vertices)^2, row-major: the patch-agreement term (scalar)
 };
 
 // The blocks of every face, each accumulated over the face's points in order (parallel over
@@ -147,7 +163,7 @@ std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vecto
                                   const std::vector<std::size_t>& start,
                                   const std::vector<std::size_t>& order,
                                   const std::vector<double>& residual, double cutoff,
-                                  double tangent_weight, int threads) {
+                                  double tangent_weight, double agreement, int threads) {
   const Index nf = domain.num_faces();
   std::vector<FaceBlock> blocks(static_cast<std::size_t>(nf));
   ParallelFor(threads, static_cast<std::size_t>(nf), [&](std::size_t b, std::size_t e) {
@@ -155,6 +171,7 @@ std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vecto
     std::vector<double> row;
     std::vector<std::size_t> nonzero;
     std::vector<double> scalar;
+    std::vector<double> corner_rows;
     for (std::size_t face = b; face < e; ++face) {
       if (start[face] == start[face + 1]) continue;
       FaceBlock& blk = blocks[face];
@@ -175,6 +192,7 @@ std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vecto
       blk.atb.assign(m3, 0.0);
       scalar.assign(m * m, 0.0);
       row.assign(m, 0.0);
+      if (agreement > 0.0) blk.agree.assign(m * m, 0.0);
       // Beside a boundary the residual keeps its tangent part: sliding along the surface there
       // would let the boundary of the domain surface retract from the data's.
       double tw = tangent_weight;
@@ -185,11 +203,36 @@ std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vecto
       for (std::size_t k = start[face]; k < start[face + 1]; ++k) {
         const PointFit& f = fits[order[k]];
         st.clear();
-        DomainSurfaceStencil(domain, f.face, f.uv, &st);
+        int nc = 0;
+        std::size_t cend[4];
+        double cw[4];
+        CornerStencils(domain, f.face, f.uv, &st, &nc, cend, cw);
         std::fill(row.begin(), row.end(), 0.0);
-        for (const auto& [v, w] : st) {
+        const bool agree = agreement > 0.0 && nc > 1;
+        if (agree) corner_rows.assign(static_cast<std::size_t>(nc) * m, 0.0);
+        int corner = 0;
+        for (std::size_t t = 0; t < st.size(); ++t) {
+          while (corner < nc && t >= cend[corner]) ++corner;
+          const auto& [v, w] = st[t];
           const auto it = std::lower_bound(blk.vertices.begin(), blk.vertices.end(), v);
-          row[static_cast<std::size_t>(it - blk.vertices.begin())] += w;
+          const std::size_t i = static_cast<std::size_t>(it - blk.vertices.begin());
+          row[i] += w;
+          if (agree && cw[corner] > 0.0) {
+            corner_rows[static_cast<std::size_t>(corner) * m + i] += w / cw[corner];
+          }
+        }
+        if (agree) {
+          // sum_a psi_a |P_a(z_a) - Q(z)|^2: each corner patch's distance from the blend.
+          for (int a = 0; a < nc; ++a) {
+            double* ca = corner_rows.data() + static_cast<std::size_t>(a) * m;
+            for (std::size_t i = 0; i < m; ++i) ca[i] -= row[i];
+            const double wa = agreement * cw[a];
+            for (std::size_t i = 0; i < m; ++i) {
+              if (ca[i] == 0.0) continue;
+              double* arow = blk.agree.data() + i * m;
+              for (std::size_t j = i; j < m; ++j) arow[j] += wa * ca[i] * ca[j];
+            }
+          }
         }
         nonzero.clear();
         for (std::size_t i = 0; i < m; ++i) {
@@ -224,7 +267,7 @@ std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vecto
           }
         }
       }
-      // The full block: the scalar part on every coordinate, the lower triangle mirrored.
+      // The scalar part on every coordinate (upper triangle only: SolveDamped() reads that).
       for (std::size_t i = 0; i < m; ++i) {
         for (std::size_t j = i; j < m; ++j) {
           for (int c = 0; c < 3; ++c) {
@@ -233,37 +276,117 @@ std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vecto
           }
         }
       }
-      for (std::size_t x = 0; x < m3; ++x) {
-        for (std::size_t y = x + 1; y < m3; ++y) blk.ata[y * m3 + x] = blk.ata[x * m3 + y];
-      }
     }
   });
   return blocks;
 }
 
+// The normal equations' lower triangle, 3 x 3 blocks per pair of vertices that share a face
+// block, summed in face order (so the sums do not depend on the thread count).
+class BlockLower {
+ public:
+  // The pattern: column vertex j holds the row vertices i >= j of every block containing both.
+  BlockLower(const std::vector<FaceBlock>& blocks, Index nv)
+      : start_(static_cast<std::size_t>(nv) + 1, 0) {
+    std::vector<std::vector<Index>> rows(static_cast<std::size_t>(nv));
+    for (Index v = 0; v < nv; ++v) rows[static_cast<std::size_t>(v)].push_back(v);
+    for (const FaceBlock& blk : blocks) {
+      // blk.vertices is sorted: for the column vertices[q] the rows are vertices[q..].
+      for (std::size_t q = 0; q < blk.vertices.size(); ++q) {
+        auto& r = rows[static_cast<std::size_t>(blk.vertices[q])];
+        r.insert(r.end(), blk.vertices.begin() + static_cast<std::ptrdiff_t>(q),
+                 blk.vertices.end());
+      }
+    }
+    for (Index v = 0; v < nv; ++v) {
+      auto& r = rows[static_cast<std::size_t>(v)];
+      std::sort(r.begin(), r.end());
+      r.erase(std::unique(r.begin(), r.end()), r.end());
+      start_[static_cast<std::size_t>(v) + 1] = start_[static_cast<std::size_t>(v)] + r.size();
+      row_.insert(row_.end(), r.begin(), r.end());
+    }
+    values_.assign(9 * row_.size(), 0.0);
+  }
+
+  // The 3 x 3 block (row vertex i, column vertex j), i >= j; column-major inside.
+  double* Block(Index i, Index j) {
+    const auto b = row_.begin() + static_cast<std::ptrdiff_t>(start_[static_cast<std::size_t>(j)]);
+    const auto e =
+        row_.begin() + static_cast<std::ptrdiff_t>(start_[static_cast<std::size_t>(j) + 1]);
+    return values_.data() + 9 * static_cast<std::size_t>(std::lower_bound(b, e, i) - row_.begin());
+  }
+
+  // The lower triangle as a compressed column-major matrix, leaving out exact zeros.
+  void ToSparse(Eigen::SparseMatrix<double>* out) const {
+    const Index nv = static_cast<Index>(start_.size()) - 1;
+    std::vector<int> outer(3 * static_cast<std::size_t>(nv) + 1, 0);
+    std::vector<int> inner;
+    std::vector<double> values;
+    inner.reserve(9 * row_.size());
+    values.reserve(9 * row_.size());
+    for (Index j = 0; j < nv; ++j) {
+      for (int d = 0; d < 3; ++d) {
+        for (std::size_t s = start_[static_cast<std::size_t>(j)];
+             s < start_[static_cast<std::size_t>(j) + 1]; ++s) {
+          const Index i = row_[s];
+          for (int c = i == j ? d : 0; c < 3; ++c) {
+            const double a = values_[9 * s + static_cast<std::size_t>(3 * d + c)];
+            if (a == 0.0) continue;
+            inner.push_back(static_cast<int>(3 * i + c));
+            values.push_back(a);
+          }
+        }
+        outer[static_cast<std::size_t>(3 * j + d) + 1] = static_cast<int>(inner.size());
+      }
+    }
+    const Eigen::Index n = 3 * static_cast<Eigen::Index>(nv);
+    out->resize(n, n);
+    out->resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+    std::copy(outer.begin(), outer.end(), out->outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), out->innerIndexPtr());
+    std::copy(values.begin(), values.end(), out->valuePtr());
+  }
+
+ private:
+  std::vector<std::size_t> start_;  // per column vertex, into row_
+  std::vector<Index> row_;          // row vertices, ascending per column
+  std::vector<double> values_;      // 9 per (row, column) pair
+};
+
 // Assembles the blocks in face order, damps every vertex towards its current position in
 // proportion to its data weight (more along the surface than across it, `vertex_normals` the
 // unit normals, empty: the same in every direction), and solves (SimplicialLDLT over the 3 nv
-// coordinates); writes the new positions.
+// coordinates, lower triangle); writes the new positions.
 Status SolveDamped(const std::vector<FaceBlock>& blocks, const ControlFitOptions& options,
                    const std::vector<Vec3>& vertex_normals, std::vector<Vec3>* positions) {
   const Index nv = static_cast<Index>(positions->size());
-  std::vector<Eigen::Triplet<double>> triplets;
+  BlockLower lower(blocks, nv);
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(nv));
   std::vector<double> diagonal(static_cast<std::size_t>(nv), 0.0);
   for (const FaceBlock& blk : blocks) {
-    const std::size_t m3 = 3 * blk.vertices.size();
-    for (std::size_t i = 0; i < m3; ++i) {
-      const Index gi = 3 * blk.vertices[i / 3] + static_cast<Index>(i % 3);
-      for (std::size_t j = 0; j < m3; ++j) {
-        const double a = blk.ata[i * m3 + j];
-        if (a != 0.0) {
-          triplets.emplace_back(gi, 3 * blk.vertices[j / 3] + static_cast<Index>(j % 3), a);
+    const std::size_t m = blk.vertices.size();
+    const std::size_t m3 = 3 * m;
+    for (std::size_t q = 0; q < m; ++q) {    // column vertex
+      for (std::size_t p = q; p < m; ++p) {  // row vertex
+        // Entry (row 3p + c, column 3q + d) from the block's upper triangle.
+        double* out = lower.Block(blk.vertices[p], blk.vertices[q]);
+        for (int d = 0; d < 3; ++d) {
+          for (int c = p == q ? d : 0; c < 3; ++c) {
+            out[3 * d + c] += blk.ata[(3 * q + static_cast<std::size_t>(d)) * m3 + 3 * p +
+                                      static_cast<std::size_t>(c)];
+          }
         }
+        if (blk.agree.empty()) continue;
+        // The patch-agreement term: the same scalar on each coordinate; not part of the data
+        // weight the damping scales with.
+        const double a = blk.agree[q * m + p];
+        for (int c = 0; c < 3; ++c) out[4 * c] += a;
       }
+    }
+    for (std::size_t i = 0; i < m3; ++i) {
       // A vertex's data weight: the mean of its three diagonal entries.
       diagonal[static_cast<std::size_t>(blk.vertices[i / 3])] += blk.ata[i * m3 + i] / 3.0;
-      rhs(gi) += blk.atb[i];
+      rhs(3 * blk.vertices[i / 3] + static_cast<Index>(i % 3)) += blk.atb[i];
     }
   }
   double mean_diag = 0.0;
@@ -279,18 +402,18 @@ Status SolveDamped(const std::vector<FaceBlock>& blocks, const ControlFitOptions
     // the data weight: mt I + (mu - mt) n n^T.
     const double mt = std::max(options.tangent_damping * diagonal[static_cast<std::size_t>(v)], mu);
     const Vec3 n = vertex_normals.empty() ? Vec3(0.0) : vertex_normals[static_cast<std::size_t>(v)];
+    double* out = lower.Block(v, v);
     for (int c = 0; c < 3; ++c) {
       for (int d = 0; d < 3; ++d) {
         const double a = (c == d ? mt : 0.0) + (mu - mt) * n[c] * n[d];
-        if (a != 0.0) triplets.emplace_back(3 * v + c, 3 * v + d, a);
+        out[3 * d + c] += a;
         rhs(3 * v + c) += a * x[d];
       }
     }
   }
-  const Eigen::Index n = 3 * static_cast<Eigen::Index>(nv);
-  Eigen::SparseMatrix<double> ata(n, n);
-  ata.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(ata);
+  Eigen::SparseMatrix<double> ata;
+  lower.ToSparse(&ata);
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver(ata);
   if (solver.info() != Eigen::Success) {
     return Status::InvalidInput("control fit: the normal equations could not be factored");
   }
@@ -336,8 +459,9 @@ Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>
       }
     });
   }
-  const std::vector<FaceBlock> blocks = FaceBlocks(domain, points, fits, normals, start, order,
-                                                   residual, cutoff, tangent_weight, threads);
+  const std::vector<FaceBlock> blocks =
+      FaceBlocks(domain, points, fits, normals, start, order, residual, cutoff, tangent_weight,
+                 options.patch_agreement, threads);
   return SolveDamped(blocks, options, vertex_normals, positions);
 }
 

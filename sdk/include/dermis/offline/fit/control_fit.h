@@ -58,6 +58,13 @@ struct ControlFitOptions {
   /// equations: (1 + 2 t) / 3 of the point distance's (t the tangent weight), so with t = 0.01
   /// both dampings act on about a third of the weight they act on with t = 1.
   double tangent_damping = 0.3;
+  /// Weight of the corner patches' agreement (unitless, >= 0): each point also costs
+  /// patch_agreement * sum_a psi_a |P_a(z_a) - Q(z)|^2, over the corner patches blended at its
+  /// parameter, so the patches are held to one surface and not only their blend. It makes the
+  /// per-chart projections consistent (the paper's error without optimisation) at the cost of
+  /// the blend's distance to the data; docs/fitting.md, "Control-vertex fit" has the
+  /// measurements behind the default (0: off).
+  double patch_agreement = 0.0;
   int threads = 0;  ///< 0: hardware concurrency. Results do not depend on it.
 };
 
