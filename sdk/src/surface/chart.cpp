@@ -12,6 +12,20 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 Vec2 CMul(Vec2 a, Vec2 b) { return Vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
+
+// v turned by n quarter turns counter-clockwise (n >= 0), exactly.
+Vec2 QuarterTurns(int n, Vec2 v) {
+  switch (n & 3) {
+    case 0:
+      return v;
+    case 1:
+      return Vec2(-v.y, v.x);
+    case 2:
+      return Vec2(-v.x, -v.y);
+    default:
+      return Vec2(v.y, -v.x);
+  }
+}
 }  // namespace
 
 double CatmullClarkSubdominantEigenvalue(int valence) {
@@ -116,6 +130,16 @@ Vec2 CornerTransition(int delta, Vec2 w) {
 }
 
 bool ChartMap(const ChartParams& chart, int face_in_ring, Vec2 w, Vec2* z, glm::dmat2* jacobian) {
+  if (chart.p == 1.0 && chart.q == 1.0) {
+    // q = 2 Theta / (pi K) = 1: every ring face spans a quarter turn, and with p = 1 the map is
+    // the rotation by face_in_ring quarter turns (a regular vertex, inside or on a boundary):
+    // exact, without trigonometry.
+    // Adding 0 turns the -0 that a negation leaves into +0, so the angle of z is never -pi.
+    *z = QuarterTurns(face_in_ring, w) + Vec2(0.0);
+    const Vec2 x = QuarterTurns(face_in_ring, Vec2(1.0, 0.0)) + Vec2(0.0);
+    if (jacobian) *jacobian = glm::dmat2(x, Vec2(-x.y, x.x) + Vec2(0.0));
+    return true;
+  }
   const double r2 = w.x * w.x + w.y * w.y;
   const double base = face_in_ring * chart.sector / chart.valence;
   if (r2 == 0.0) {
@@ -152,6 +176,21 @@ bool ChartMapInverse(const ChartParams& chart, Vec2 z, int* face_in_ring, Vec2* 
     *face_in_ring = 0;
     *w = Vec2(0.0);
     return rho == 0.0;
+  }
+  if (chart.p == 1.0 && chart.q == 1.0 && chart.kind == VertexKind::kInterior) {
+    // The regular interior chart (ChartMap: a rotation by quarter turns): the face is the
+    // quadrant of z, angles [f pi/2, (f + 1) pi/2) as below, and w is z turned back.
+    int f = 3;
+    if (z.x > 0.0 && z.y >= 0.0) {
+      f = 0;
+    } else if (z.x <= 0.0 && z.y > 0.0) {
+      f = 1;
+    } else if (z.x < 0.0 && z.y <= 0.0) {
+      f = 2;
+    }
+    *face_in_ring = f;
+    *w = QuarterTurns(4 - f, z) + Vec2(0.0);
+    return true;
   }
   double theta = std::atan2(z.y, z.x);  // (-pi, pi]
   const double wedge = chart.sector / chart.valence;
