@@ -13,6 +13,7 @@
 #include "dermis/offline/build/control_mesh.h"
 #include "dermis/offline/fit/point_fit.h"
 #include "dermis/offline/fit/surface_projection.h"
+#include "dermis/offline/geometry/builtin_meshes.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/offline/io/point_input.h"
 #include "dermis/surface/surface_evaluator.h"
@@ -224,6 +225,70 @@ TEST_CASE("fit: FitPoints without chart samples gives the same parameters") {
   // The comparison means something: most points were optimised and had chart samples.
   CHECK(optimized > static_cast<int>(a.size()) * 9 / 10);
   CHECK(sampled > static_cast<int>(a.size()) * 9 / 10);
+}
+
+TEST_CASE("fit: FitPoints can solve only beside a boundary") {
+  // The control-vertex fit's rounds solve for the common displacement only in faces with a
+  // boundary vertex (PointFitOptions::optimize_beside_boundary): there the parameters must be
+  // the full solve's, elsewhere the projection's. The built-in grid (4 x 3 quads, open) has
+  // two faces without a boundary vertex.
+  PolygonMesh grid;
+  REQUIRE(MakeBuiltinMesh("grid", &grid).ok());
+  ControlSurface surface;
+  REQUIRE(BuildControlSurface(grid, DomainOptions(), &surface).ok());
+  const ManifoldDomain& domain = *surface.domain;
+  std::vector<Vec3> points;
+  for (Index f = 0; f < domain.num_faces(); ++f) {
+    for (int j = 0; j < 6; ++j) {
+      for (int i = 0; i < 6; ++i) {
+        SurfacePoint sp;
+        REQUIRE(EvaluateSurface(domain, surface.patches.data(), nullptr, f,
+                                Vec2((i + 0.5) / 6, (j + 0.5) / 6), &sp));
+        points.push_back(sp.position + 0.05 * std::sin(3.0 * sp.position.x) * sp.normal);
+      }
+    }
+  }
+  auto beside_boundary = [&](Index face) {
+    for (int a = 0; a < 4; ++a) {
+      if (domain.topology().is_boundary_vertex(domain.topology().face_vertex(face, a))) {
+        return true;
+      }
+    }
+    return false;
+  };
+  PointFitOptions full, boundary_only, none;
+  full.threads = boundary_only.threads = none.threads = 2;
+  full.chart_samples = boundary_only.chart_samples = none.chart_samples = false;
+  boundary_only.optimize = none.optimize = false;
+  boundary_only.optimize_beside_boundary = true;
+  std::vector<PointFit> a, b, c;
+  FitPoints(surface, points, full, &a);
+  FitPoints(surface, points, boundary_only, &b);
+  FitPoints(surface, points, none, &c);
+  REQUIRE(b.size() == points.size());
+  int solved = 0, projected = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    INFO("point " << i);
+    CHECK(c[i].status != PointFitStatus::kOptimized);
+    if (b[i].status == PointFitStatus::kOptimized) {
+      ++solved;
+      CHECK(beside_boundary(a[i].projected_face));
+      CHECK(b[i].face == a[i].face);
+      CHECK(b[i].uv == a[i].uv);
+      CHECK(b[i].delta == a[i].delta);
+    } else {
+      ++projected;
+      CHECK_FALSE(beside_boundary(b[i].face));
+      // The projection's parameter, as without any solve.
+      CHECK(b[i].face == c[i].face);
+      CHECK(b[i].uv == c[i].uv);
+      CHECK(b[i].face == a[i].projected_face);
+      CHECK(b[i].uv == a[i].projected_uv);
+    }
+  }
+  // Both kinds occur: 10 of the 12 faces have a boundary vertex.
+  CHECK(solved > static_cast<int>(points.size()) / 2);
+  CHECK(projected > static_cast<int>(points.size()) / 12);
 }
 
 TEST_CASE("fit: a control-mesh target equal to the full split keeps every triangle") {

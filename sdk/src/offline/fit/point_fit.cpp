@@ -36,6 +36,14 @@ void BuildControlFaceTree(const ManifoldDomain& domain, const std::vector<Vec3>&
   tree->Build(x, triangles);
 }
 
+// Whether a face has a boundary vertex.
+bool BesideBoundary(const ManifoldDomain& domain, Index face) {
+  for (int a = 0; a < 4; ++a) {
+    if (domain.topology().is_boundary_vertex(domain.topology().face_vertex(face, a))) return true;
+  }
+  return false;
+}
+
 // Yoon's projection (paper section 4, "Initial displacements") of point p, then the
 // optimisation of Eq. 5 (docs/notes/fit.md section 4b); fills *out.
 void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std::vector<Vec3>& x,
@@ -73,7 +81,9 @@ void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std
     const int corner = order[0];
     const Index v = domain.topology().face_vertex(face, corner);
     const Vec2 z = domain.FaceToChart(face, corner, uv0);
-    if (!options.optimize) return;
+    if (!options.optimize && !(options.optimize_beside_boundary && BesideBoundary(domain, face))) {
+      return;
+    }
     const CommonDisplacementSolution s = SolveCommonDisplacement(
         domain, patches, p, v, z, SignedDistance(patches[v], z, p), options.tolerance);
     if (!s.converged) return;
@@ -96,7 +106,9 @@ void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std
   r.status = PointFitStatus::kNotConverged;
   r.face = face1;
   r.uv = uv1;
-  if (!options.optimize) return;
+  if (!options.optimize && !(options.optimize_beside_boundary && BesideBoundary(domain, face1))) {
+    return;
+  }
   const CommonDisplacementSolution s =
       SolveCommonDisplacement(domain, patches, p, v0, z0, r.delta, options.tolerance);
   if (!s.converged) return;

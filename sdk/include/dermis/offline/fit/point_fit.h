@@ -53,6 +53,10 @@ struct PointFitOptions {
   /// corners (`PointFit::projected`, a few Newton steps each) are skipped. The parameters are the
   /// same either way; the control-vertex fit's rounds need nothing else.
   bool chart_samples = true;
+  /// With `optimize` false: still solve for the common displacement where the point's face
+  /// has a boundary vertex (the control-vertex fit measures the point distance there, which
+  /// needs the exact foot point; elsewhere the projection's parameter is enough for it).
+  bool optimize_beside_boundary = false;
 };
 
 /// Projects every point (paper section 4): closest control face, its nearest corner, Newton on
