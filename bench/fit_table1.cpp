@@ -13,7 +13,7 @@
 // Usage (from the repo root): bench_fit [OBJ|PLY] [--rows bunny,torus,characters]
 //                             [--rows characters:NAME,NAME] (only those characters)
 //                             [--crease-rows 0|1] [--displacement-levels L] (characters' lod)
-//                             [--control-vertices N] [--torus-vertices N]
+//                             [--control-vertices N] [--torus-vertices N] [--torus-draws N]
 //                             [--control-method remesh|simplify]
 //                             [--density D] [--control-fit ITERATIONS] [--tangent-weight T]
 //                             [--tangent-damping D] [--patch-agreement W] [--finest-passes P]
@@ -32,6 +32,7 @@
 #include <ctime>
 #include <filesystem>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -176,6 +177,7 @@ struct Settings {
   std::string bunny = "../shared/data/scans/stanford-bunny.obj";
   std::string rows = "bunny,torus,characters";
   int control_vertices = 540, torus_vertices = 200, repeat = 3;
+  int torus_draws = 8;  ///< --torus-draws: torus inputs moved by 1e-12 (0: only the exact one).
   bool detail = false, mba = false;
   bool where = false;             ///< --where: the largest character distances and what is there.
   bool no_crease_remesh = false;  ///< --no-crease-remesh: the remesh ignores creases.
@@ -252,14 +254,24 @@ void MeanMax(const std::vector<Vec3>& points, const TriangleDistanceTree& tree, 
 // The domain surface (no displacement) and the full surface, tessellated at `level`, against
 // the input mesh in both directions: every input vertex to the surface's triangles and every
 // surface vertex to the input's triangles (mean / max, in the unit where the largest side is 1).
+// Distances of one surface (domain or full), in the unit where the largest side is 1.
+struct SurfaceDistances {
+  double to_surface_mean = 0, to_surface_max = 0;  // data -> surface
+  double to_data_mean = 0, to_data_max = 0;        // surface -> data
+};
+
+// Prints the domain and the full surface's distances (row 0 and 1 of *out if not null).
 void PrintSurfaceDistances(const char* name, const FittedSurface& fitted, const PolygonMesh& mesh,
-                           double scale, int level) {
+                           double scale, int level, SurfaceDistances* out = nullptr,
+                           bool print = true) {
   TriangleDistanceTree data_tree;
   data_tree.Build(mesh.positions, TriangulateFan(mesh));
   TessellationPattern fine;
   TessellationPattern::Build(fitted.surface.domain->topology(), level, &fine);
-  std::printf("| %s | data -> surface mean / max | surface -> data mean / max | max |\n", name);
-  std::printf("|---|---|---|---|\n");
+  if (print) {
+    std::printf("| %s | data -> surface mean / max | surface -> data mean / max | max |\n", name);
+    std::printf("|---|---|---|---|\n");
+  }
   for (int full = 0; full < 2; ++full) {
     std::unique_ptr<TruncatedDisplacement> none;
     if (!full) none = std::make_unique<TruncatedDisplacement>(fitted.displacement.get(), 0);
@@ -273,6 +285,8 @@ void PrintSurfaceDistances(const char* name, const FittedSurface& fitted, const 
     double m1 = 0, x1 = 0, m2 = 0, x2 = 0;
     MeanMax(mesh.positions, surface_tree, scale, &m1, &x1);
     MeanMax(x, data_tree, scale, &m2, &x2);
+    if (out) out[full] = SurfaceDistances{m1, x1, m2, x2};
+    if (!print) continue;
     std::printf("| %s | %.3g / %.3g | %.3g / %.3g | %.3g |\n",
                 full ? "full surface" : "domain surface (0 displacement levels)", m1, x1, m2, x2,
                 std::max(x1, x2));
@@ -419,7 +433,10 @@ int RunBunny(const Settings& st) {
   return 0;
 }
 
-int RunTorus(const Settings& st) {
+// One torus fit: the input moved by uniform noise of at most `jitter` model units per
+// coordinate (seeded by `seed`; 0: none), fitted and measured; prints its tables if `print`.
+int FitTorus(const Settings& st, double jitter, unsigned seed, bool print, SurfaceDistances out[2],
+             FitReport* report) {
   // The input: the built-in torus's manifold surface tessellated at level 12 (as `dermis
   // tessellate --builtin torus --level 12`).
   PolygonMesh control;
@@ -437,6 +454,14 @@ int RunTorus(const Settings& st) {
   mesh.positions.resize(pattern.samples.size());
   EvaluateSamples(*cs.domain, cs.patches.data(), nullptr, pattern.samples.data(),
                   pattern.samples.size(), mesh.positions.data(), nullptr);
+  if (jitter > 0.0) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-jitter, jitter);
+    for (Vec3& p : mesh.positions) {
+      const double dx = u(rng), dy = u(rng), dz = u(rng);
+      p += Vec3(dx, dy, dz);
+    }
+  }
   for (std::size_t t = 0; t < pattern.triangles.size(); t += 3) {
     mesh.AddFace({static_cast<Index>(pattern.triangles[t]),
                   static_cast<Index>(pattern.triangles[t + 1]),
@@ -449,19 +474,66 @@ int RunTorus(const Settings& st) {
   options.control_vertices = st.torus_vertices;
   ApplySettings(st, &options);
   FittedSurface fitted;
-  FitReport report;
-  s = FitSurface(input, options, &fitted, &report);
+  s = FitSurface(input, options, &fitted, report);
   if (!s.ok()) {
     std::fprintf(stderr, "bench_fit: torus: %s\n", s.message().c_str());
     return 1;
   }
+  if (print) {
+    std::printf(
+        "torus: %zu points, %lld control vertices (%lld quads), unit: largest side 1 (%.4g "
+        "model units); surface tessellated at level 24\n",
+        mesh.positions.size(), static_cast<long long>(report->control_vertices),
+        static_cast<long long>(report->control_faces), report->scale);
+  }
+  PrintSurfaceDistances("torus", fitted, mesh, report->scale, 24, out, print);
+  if (print) PrintControlMesh("torus", *report);
+  return 0;
+}
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+int RunTorus(const Settings& st) {
+  SurfaceDistances first[2];
+  FitReport report;
+  if (FitTorus(st, 0.0, 0, true, first, &report) != 0) return 1;
+  if (st.torus_draws <= 0) return 0;
+  // The input is exactly symmetric, so the control mesh's simplification and remesh break ties
+  // by rounding: inputs moved by 1e-12 of the model (far below any real data's noise) give
+  // different control meshes. The spread over such draws says how much one row means.
   std::printf(
-      "torus: %zu points, %lld control vertices (%lld quads), unit: largest side 1 (%.4g model "
-      "units); surface tessellated at level 24\n",
-      mesh.positions.size(), static_cast<long long>(report.control_vertices),
-      static_cast<long long>(report.control_faces), report.scale);
-  PrintSurfaceDistances("torus", fitted, mesh, report.scale, 24);
-  PrintControlMesh("torus", report);
+      "torus, %d more draws (input moved by at most 1e-12 model units, seeds 1..%d): domain "
+      "surface, mean / max of both directions, interior valence 4\n",
+      st.torus_draws, st.torus_draws);
+  std::printf("| draw | control vertices | valence 4 | domain mean | domain max | full max |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  std::vector<double> means, maxes, full_maxes;
+  for (int d = 0; d <= st.torus_draws; ++d) {
+    SurfaceDistances dist[2];
+    if (d == 0) {
+      dist[0] = first[0], dist[1] = first[1];
+    } else if (FitTorus(st, 1e-12, static_cast<unsigned>(d), false, dist, &report) != 0) {
+      return 1;
+    }
+    const double mean = std::max(dist[0].to_surface_mean, dist[0].to_data_mean);
+    const double mx = std::max(dist[0].to_surface_max, dist[0].to_data_max);
+    const double full = std::max(dist[1].to_surface_max, dist[1].to_data_max);
+    means.push_back(mean), maxes.push_back(mx), full_maxes.push_back(full);
+    std::printf("| %d | %lld | %.1f%% | %.3g | %.3g | %.3g |\n", d,
+                static_cast<long long>(report.control_vertices),
+                100.0 * report.control_mesh.quality.valence4_share, mean, mx, full);
+  }
+  std::printf(
+      "| median (min..max) | | | %.3g (%.3g..%.3g) | %.3g (%.3g..%.3g) | %.3g (%.3g..%.3g) |\n",
+      Median(means), *std::min_element(means.begin(), means.end()),
+      *std::max_element(means.begin(), means.end()), Median(maxes),
+      *std::min_element(maxes.begin(), maxes.end()), *std::max_element(maxes.begin(), maxes.end()),
+      Median(full_maxes), *std::min_element(full_maxes.begin(), full_maxes.end()),
+      *std::max_element(full_maxes.begin(), full_maxes.end()));
   return 0;
 }
 
@@ -680,6 +752,8 @@ int main(int argc, char** argv) {
       st.control_vertices = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--torus-vertices") == 0 && i + 1 < argc) {
       st.torus_vertices = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--torus-draws") == 0 && i + 1 < argc) {
+      st.torus_draws = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--max-turn") == 0 && i + 1 < argc) {
       st.max_turn = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--samples") == 0 && i + 1 < argc) {
