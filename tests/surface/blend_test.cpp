@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "dermis/surface/chart.h"
 #include "support/domains.h"
 
 using namespace dermis;
@@ -75,6 +76,36 @@ TEST_CASE("the four corner weights of a face sum to one", "[blend]") {
         REQUIRE(sum == Approx(1.0).margin(1e-14));
         REQUIRE(std::abs(gsum.x) < 1e-9);
         REQUIRE(std::abs(gsum.y) < 1e-9);
+      }
+    }
+  }
+}
+
+TEST_CASE("a face's four corner weights at once equal CornerWeight bit for bit", "[blend]") {
+  // FaceCornerWeights evaluates the steps at u, 1 - u, v, 1 - v once each; the evaluator, the
+  // projection and the control fit rely on it giving exactly CornerWeight's values.
+  test::Lcg rng(11);
+  for (BlendType type : {BlendType::kCInfinity, BlendType::kC2}) {
+    for (double lb : {0.01, 0.125, 0.3}) {
+      for (int i = 0; i < 2000; ++i) {
+        // Random points, and points on the face's edges, corners and blend-window borders.
+        Vec2 uv(rng.Next(), rng.Next());
+        if (i % 7 == 0) uv.x = (i / 7) % 3 == 0 ? 0.0 : (i / 7) % 3 == 1 ? 1.0 : lb;
+        if (i % 11 == 0) uv.y = (i / 11) % 2 == 0 ? 1.0 - lb : 0.5;
+        double psi[4];
+        Vec2 grad[4];
+        FaceCornerWeights(type, lb, uv, psi, grad);
+        double psi_only[4];
+        FaceCornerWeights(type, lb, uv, psi_only);
+        for (int a = 0; a < 4; ++a) {
+          Vec2 g;
+          const double w = CornerWeight(type, lb, FaceToCorner(a, uv), &g);
+          INFO("corner " << a << " at (" << uv.x << ", " << uv.y << ")");
+          REQUIRE(psi[a] == w);
+          REQUIRE(psi_only[a] == w);
+          REQUIRE(grad[a].x == g.x);
+          REQUIRE(grad[a].y == g.y);
+        }
       }
     }
   }

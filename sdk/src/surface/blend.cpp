@@ -75,4 +75,19 @@ double CornerWeight(BlendType type, double lb, Vec2 cd, Vec2* gradient) {
   return bc * bd;
 }
 
+void FaceCornerWeights(BlendType type, double lb, Vec2 uv, double psi[4], Vec2 gradient[4]) {
+  const double inv = 1.0 / (1.0 - 2.0 * lb);
+  // The steps at the corner coordinates FaceToCorner() gives: u, 1 - u, v, 1 - v.
+  const double x[4] = {uv.x, 1.0 - uv.x, uv.y, 1.0 - uv.y};
+  double b[4], db[4];
+  for (int k = 0; k < 4; ++k) b[k] = BlendStep(type, (x[k] - lb) * inv, &db[k]);
+  // Corner a's (c, d): 0 (u, v), 1 (v, 1 - u), 2 (1 - u, 1 - v), 3 (1 - v, u).
+  const int c[4] = {0, 2, 1, 3}, d[4] = {2, 1, 3, 0};
+  for (int a = 0; a < 4; ++a) {
+    const double bc = b[c[a]], bd = b[d[a]];
+    if (gradient) gradient[a] = Vec2(db[c[a]] * inv * bd, bc * db[d[a]] * inv);
+    psi[a] = bc * bd;
+  }
+}
+
 }  // namespace dermis

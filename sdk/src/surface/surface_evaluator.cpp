@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "dermis/surface/blend.h"
+
 namespace dermis {
 namespace {
 
@@ -74,13 +76,16 @@ bool EvaluateSurface(const ManifoldDomain& domain, const LocalPatch* patches,
 
   Vec3 s(0.0), su(0.0), sv(0.0);
   glm::dmat2 m_dom(1.0);
+  double weights[4];
+  Vec2 weight_gradients[4];
+  FaceCornerWeights(blend, lb, uv, weights, weight_gradients);
   for (int a = 0; a < 4; ++a) {
     const Vec2 cd = FaceToCorner(a, uv);
     if (cd.x >= ub || cd.y >= ub) continue;
     const Index h = base + a;
     const Index v = topo.halfedge_origin(h);
-    Vec2 grad_psi;
-    const double psi = CornerWeight(blend, lb, cd, &grad_psi);
+    const Vec2 grad_psi = weight_gradients[a];
+    const double psi = weights[a];
     Vec2 z;
     glm::dmat2 jac;
     ChartMap(domain.chart(v), topo.halfedge_ring_index(h), cd, &z, &jac);  // r > 0 here

@@ -27,4 +27,11 @@ double BlendStep(BlendType type, double t, double* derivative = nullptr);
 /// [lb, 1 - lb] (0 < lb < 1/2). If `gradient` is not null it receives d psi / d(c, d).
 double CornerWeight(BlendType type, double lb, Vec2 cd, Vec2* gradient = nullptr);
 
+/// The four corner weights of face point uv: psi[a] = CornerWeight(type, lb, FaceToCorner(a,
+/// uv)), bit for bit, and with `gradient` not null gradient[a] as CornerWeight gives it (d psi /
+/// d(c, d) of corner a). The corners' coordinates are u, 1 - u, v and 1 - v in turn, so the
+/// four steps are evaluated once each instead of twice.
+void FaceCornerWeights(BlendType type, double lb, Vec2 uv, double psi[4],
+                       Vec2 gradient[4] = nullptr);
+
 }  // namespace dermis

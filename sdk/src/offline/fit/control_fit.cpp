@@ -58,11 +58,13 @@ bool CornerStencils(const ManifoldDomain& domain, Index face, Vec2 uv,
   const int dominant = DominantCorner(uv);
   const Vec2 cd_dom = FaceToCorner(dominant, uv);
   const bool one_chart = cd_dom.x <= lb && cd_dom.y <= lb;
+  double weights[4] = {1.0, 1.0, 1.0, 1.0};
+  if (!one_chart) FaceCornerWeights(domain.options().blend_type, lb, uv, weights);
   for (int a = 0; a < 4; ++a) {
     if (one_chart && a != dominant) continue;
     const Vec2 cd = FaceToCorner(a, uv);
     if (!one_chart && (cd.x >= ub || cd.y >= ub)) continue;
-    const double psi = one_chart ? 1.0 : CornerWeight(domain.options().blend_type, lb, cd);
+    const double psi = weights[a];
     const Index h = base + a;
     const Index v = topo.halfedge_origin(h);
     Vec2 z;
@@ -142,14 +144,14 @@ double RobustCutoff(const std::vector<double>& residual, const std::vector<Vec3>
   return robust_cutoff * std::max(sorted[sorted.size() / 2], 1e-9 * size);
 }
 
-// One face's share of the normal equations: the distinct vertices of its stencils, a dense
-// block over their coordinates ((3 vertices)^2, row-major, unknown 3i + c is coordinate c of
-// vertex i) and the right-hand sides (3 per vertex).
+// One face's share of the normal equations: the distinct vertices of its stencils (sorted), a
+// dense block over their coordinates ((3 vertices)^2, row-major, unknown 3i + c is coordinate c
+// of vertex i; only the upper triangle is filled) and the right-hand sides (3 per vertex).
 struct FaceBlock {
   std::vector<Index> vertices;
   std::vector<double> ata;
   std::vector<double> atb;
-  std::vector<double> agree;  // (vertices)^2, row-major: the patch-agreement term (scalar)
+  std::vector<double> agree;  // (vertices)^2, upper triangle: the patch-agreement term (scalar)
 };
 
 // The blocks of every face, each accumulated over the face's points in order (parallel over

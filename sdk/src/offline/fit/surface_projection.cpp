@@ -58,6 +58,9 @@ bool EvaluateDomainJet(const ManifoldDomain& domain, const LocalPatch* patches, 
   Vec3 qu(0.0), qv(0.0), nu(0.0), nv(0.0);
   glm::dmat2 m_v(1.0);
   const Index base = topo.face_offset(face);
+  double weights[4];
+  Vec2 weight_gradients[4];
+  FaceCornerWeights(domain.options().blend_type, lb, uv, weights, weight_gradients);
   for (int a = 0; a < 4; ++a) {
     const Vec2 cd = FaceToCorner(a, uv);
     const Index h = base + a;
@@ -69,8 +72,8 @@ bool EvaluateDomainJet(const ManifoldDomain& domain, const LocalPatch* patches, 
     const glm::dmat2 m = jac * d;  // columns dz_a/du, dz_a/dv
     if (a == c) m_v = m;
     if (cd.x >= ub || cd.y >= ub) continue;
-    Vec2 grad;
-    const double psi = CornerWeight(domain.options().blend_type, lb, cd, &grad);
+    const Vec2 grad = weight_gradients[a];
+    const double psi = weights[a];
     const double psi_u = glm::dot(grad, d[0]);
     const double psi_v = glm::dot(grad, d[1]);
     PatchFrame f;
