@@ -2,6 +2,7 @@
 #include "dermis/surface/chart.h"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "dermis/surface/manifold_domain.h"
 #include "support/domains.h"
@@ -106,6 +107,60 @@ TEST_CASE("chart maps invert for every valence, kind and chart type", "[chart]")
     Vec2 z0;
     ChartMap(c, 0, Vec2(0.0), &z0);
     CHECK(z0 == Vec2(0.0));
+  }
+}
+
+TEST_CASE("quarter-turn charts: the rotation, and the inverse on the axes and at -0", "[chart]") {
+  // p = q = 1 charts map by exact quarter turns; the interior one's inverse takes the face from
+  // the quadrant, angles [f pi/2, (f + 1) pi/2), whatever the sign of a zero coordinate.
+  for (ChartType type :
+       {ChartType::kCharacteristicMap, ChartType::kFullyComplex, ChartType::kIsodistance}) {
+    const ChartParams chart = MakeChartParams(4, VertexKind::kInterior, type);
+    REQUIRE(chart.p == 1.0);
+    REQUIRE(chart.q == 1.0);
+    struct Axis {
+      Vec2 z;
+      int face;
+      Vec2 w;
+    };
+    const Axis axes[] = {{{1.0, 0.0}, 0, {1.0, 0.0}},       {{1.0, -0.0}, 0, {1.0, 0.0}},
+                         {{0.0, 2.0}, 1, {2.0, 0.0}},       {{-0.0, 2.0}, 1, {2.0, 0.0}},
+                         {{-3.0, 0.0}, 2, {3.0, 0.0}},      {{-3.0, -0.0}, 2, {3.0, 0.0}},
+                         {{0.0, -0.5}, 3, {0.5, 0.0}},      {{-0.0, -0.5}, 3, {0.5, 0.0}},
+                         {{0.25, 0.25}, 0, {0.25, 0.25}},   {{-0.25, 0.25}, 1, {0.25, 0.25}},
+                         {{-0.25, -0.25}, 2, {0.25, 0.25}}, {{0.25, -0.25}, 3, {0.25, 0.25}}};
+    for (const Axis& a : axes) {
+      INFO("z = (" << a.z.x << ", " << a.z.y << ")");
+      int f = -1;
+      Vec2 w;
+      REQUIRE(ChartMapInverse(chart, a.z, &f, &w));
+      CHECK(f == a.face);
+      CHECK(w.x == a.w.x);
+      CHECK(w.y == a.w.y);
+      CHECK_FALSE(std::signbit(w.x));
+      CHECK_FALSE(std::signbit(w.y));
+      Vec2 z;
+      glm::dmat2 jac;
+      REQUIRE(ChartMap(chart, f, w, &z, &jac));
+      CHECK(z.x == a.z.x);
+      CHECK(z.y == a.z.y);
+      // The image of the face's c axis lies at angle f pi/2, never at -pi.
+      Vec2 edge;
+      ChartMap(chart, f, Vec2(1.0, 0.0), &edge);
+      CHECK(std::atan2(edge.y, edge.x) ==
+            Approx(f <= 2 ? f * 1.5707963267948966 : -1.5707963267948966));
+      // The Jacobian is the rotation by f quarter turns.
+      CHECK(jac[0].x == edge.x);
+      CHECK(jac[0].y == edge.y);
+      CHECK(jac[1].x == -edge.y);
+      CHECK(jac[1].y == edge.x);
+    }
+    // At the vertex: the same rotation, and face 0.
+    int f = -1;
+    Vec2 w(1.0);
+    REQUIRE(ChartMapInverse(chart, Vec2(0.0), &f, &w));
+    CHECK(f == 0);
+    CHECK(w == Vec2(0.0));
   }
 }
 

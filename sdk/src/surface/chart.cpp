@@ -131,10 +131,10 @@ Vec2 CornerTransition(int delta, Vec2 w) {
 
 bool ChartMap(const ChartParams& chart, int face_in_ring, Vec2 w, Vec2* z, glm::dmat2* jacobian) {
   if (chart.p == 1.0 && chart.q == 1.0) {
-    // q = 2 Theta / (pi K) = 1: every ring face spans a quarter turn, and with p = 1 the map is
-    // the rotation by face_in_ring quarter turns (a regular vertex, inside or on a boundary):
-    // exact, without trigonometry.
-    // Adding 0 turns the -0 that a negation leaves into +0, so the angle of z is never -pi.
+    // q = 2 Theta / (pi K) = 1: every ring face spans a quarter turn (4 faces inside, 2 on a
+    // crease, 1 at a convex corner, 3 at a concave one), and with p = 1 the map is the rotation
+    // by face_in_ring quarter turns: exact, without trigonometry. Adding 0 turns the -0 that a
+    // negation leaves into +0, so the angle of z is never -pi.
     *z = QuarterTurns(face_in_ring, w) + Vec2(0.0);
     const Vec2 x = QuarterTurns(face_in_ring, Vec2(1.0, 0.0)) + Vec2(0.0);
     if (jacobian) *jacobian = glm::dmat2(x, Vec2(-x.y, x.x) + Vec2(0.0));
@@ -145,11 +145,7 @@ bool ChartMap(const ChartParams& chart, int face_in_ring, Vec2 w, Vec2* z, glm::
   if (r2 == 0.0) {
     *z = Vec2(0.0);
     if (jacobian) {
-      if (chart.p == 1.0 && chart.q == 1.0) {
-        const Vec2 rot(std::cos(base), std::sin(base));
-        *jacobian = glm::dmat2(rot, Vec2(-rot.y, rot.x));
-        return true;
-      }
+      // p = q = 1 took the rotation above, so the map is not differentiable here.
       *jacobian = glm::dmat2(0.0);
       return false;
     }

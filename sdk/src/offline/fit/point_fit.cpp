@@ -81,9 +81,9 @@ void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std
     const int corner = order[0];
     const Index v = domain.topology().face_vertex(face, corner);
     const Vec2 z = domain.FaceToChart(face, corner, uv0);
-    if (!options.optimize && !(options.optimize_beside_boundary && BesideBoundary(domain, face))) {
-      return;
-    }
+    // Without a projection there is no parameter to fall back on: solve whenever the partial
+    // solve is on.
+    if (!options.optimize && !options.optimize_beside_boundary) return;
     const CommonDisplacementSolution s = SolveCommonDisplacement(
         domain, patches, p, v, z, SignedDistance(patches[v], z, p), options.tolerance);
     if (!s.converged) return;

@@ -157,12 +157,13 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   // The control-vertex fit's rounds and the held-out points need the parameters only.
   PointFitOptions pf_parameters = pf;
   pf_parameters.chart_samples = false;
-  // The rounds take Yoon's projection (the nearest corner's patch) and solve for the common
-  // displacement only beside a boundary: elsewhere their residuals are measured mostly across
-  // the surface, so a foot point off along the surface costs little, and the solve was three
-  // quarters of the projection's time (docs/fitting.md, "The fit's time").
+  // With residuals measured mostly across the surface (tangent weight below 1) the rounds take
+  // Yoon's projection (the nearest corner's patch) and solve for the common displacement only
+  // beside a boundary, where the point distance is kept: elsewhere a foot point off along the
+  // surface costs little, and the solve was about two thirds of the projection's time
+  // (docs/fitting.md, "The fit's time").
   PointFitOptions pf_rounds = pf_parameters;
-  pf_rounds.optimize = false;
+  pf_rounds.optimize = !(options.control_fit.tangent_weight < 1.0);
   pf_rounds.optimize_beside_boundary = true;
   std::vector<PointFit> fits;
   // A built control mesh lies on the data; moving its vertices so that the smooth domain

@@ -69,10 +69,10 @@ struct ControlFitOptions {
 };
 
 /// One least-squares step: new control positions minimising sum_i |Q(z_i; X) - p_i|^2 (with
-/// damping and robust weights) at the parameters of `fits` (points with kOutside status are
-/// ignored). `positions` holds the current positions on entry and the fitted ones on return.
-/// Deterministic whatever the thread count. Fails (leaving positions unchanged) if the system
-/// cannot be solved.
+/// damping, robust weights, the tangent weight and, if set, the patch-agreement term) at the
+/// parameters of `fits` (points with kOutside status are ignored). `positions` holds the current
+/// positions on entry and the fitted ones on return. Deterministic whatever the thread count. Fails
+/// (leaving positions unchanged) if the system cannot be solved.
 Status FitControlPositions(const ManifoldDomain& domain, const std::vector<Vec3>& points,
                            const std::vector<PointFit>& fits, const ControlFitOptions& options,
                            std::vector<Vec3>* positions);

@@ -53,9 +53,11 @@ struct PointFitOptions {
   /// corners (`PointFit::projected`, a few Newton steps each) are skipped. The parameters are the
   /// same either way; the control-vertex fit's rounds need nothing else.
   bool chart_samples = true;
-  /// With `optimize` false: still solve for the common displacement where the point's face
-  /// has a boundary vertex (the control-vertex fit measures the point distance there, which
-  /// needs the exact foot point; elsewhere the projection's parameter is enough for it).
+  /// With `optimize` false: still solve for the common displacement where the projection's
+  /// face has a boundary vertex (the control-vertex fit measures the point distance there,
+  /// which needs the exact foot point; elsewhere the projection's parameter is enough for it),
+  /// and where no corner's projection stays in its chart (then there is no parameter without
+  /// the solve).
   bool optimize_beside_boundary = false;
 };
 
