@@ -9,9 +9,9 @@ function(dermis_set_warnings target)
     # -Og: the Debug build's -O0 ran the sanitized suite three times slower, and -O1 (what
     # AddressSanitizer's documentation advises) made this the longest build of CI; under GCC's
     # -Og the whole build takes about a quarter less compiler time and the tests run almost as
-    # fast (docs/reliability.md, "Sanitizers in CI"). Assertions and debug information stay. GCC 12 then warns -Wmaybe-uninitialized
-    # inside libstdc++'s <regex> (Catch's main) under ASan, a false positive: that warning is
-    # checked by the other builds.
+    # fast (docs/reliability.md, "Sanitizers in CI"). Assertions and debug information stay.
+    # GCC 12 then warns -Wmaybe-uninitialized inside libstdc++'s <regex> (Catch's main) under
+    # ASan, a false positive: that warning is checked by the other builds.
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
                                              -fno-sanitize-recover=all -Og)
     if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")

@@ -136,8 +136,10 @@ bool ChartMap(const ChartParams& chart, int face_in_ring, Vec2 w, Vec2* z, glm::
     // by face_in_ring quarter turns: exact, without trigonometry. Adding 0 turns the -0 that a
     // negation leaves into +0, so the angle of z is never -pi.
     *z = QuarterTurns(face_in_ring, w) + Vec2(0.0);
-    const Vec2 x = QuarterTurns(face_in_ring, Vec2(1.0, 0.0)) + Vec2(0.0);
-    if (jacobian) *jacobian = glm::dmat2(x, Vec2(-x.y, x.x) + Vec2(0.0));
+    if (jacobian) {
+      const Vec2 x = QuarterTurns(face_in_ring, Vec2(1.0, 0.0)) + Vec2(0.0);
+      *jacobian = glm::dmat2(x, Vec2(-x.y, x.x) + Vec2(0.0));
+    }
     return true;
   }
   const double r2 = w.x * w.x + w.y * w.y;

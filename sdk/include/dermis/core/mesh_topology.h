@@ -91,6 +91,13 @@ class MeshTopology {
   /// Number of faces around vertex v (its valence for interior vertices).
   int valence(Index v) const { return ring_offsets_[v + 1] - ring_offsets_[v]; }
   bool is_boundary_vertex(Index v) const { return vertex_boundary_[v] != 0; }
+  /// Whether any vertex of face f is a boundary vertex.
+  bool face_touches_boundary(Index f) const {
+    for (Index k = 0; k < face_size(f); ++k) {
+      if (is_boundary_vertex(face_vertices_[face_offsets_[f] + k])) return true;
+    }
+    return false;
+  }
   /// Face i (0-based, counter-clockwise) around vertex v and its corner there.
   RingCorner ring(Index v, int i) const { return ring_[ring_offsets_[v] + i]; }
   /// Index of the connected component (by shared edges and vertices) of face f.

@@ -197,11 +197,8 @@ std::vector<FaceBlock> FaceBlocks(const ManifoldDomain& domain, const std::vecto
       if (agreement > 0.0) blk.agree.assign(m * m, 0.0);
       // Beside a boundary the residual keeps its tangent part: sliding along the surface there
       // would let the boundary of the domain surface retract from the data's.
-      double tw = tangent_weight;
-      for (int a = 0; a < 4; ++a) {
-        const Index v = domain.topology().face_vertex(static_cast<Index>(face), a);
-        if (domain.topology().is_boundary_vertex(v)) tw = 1.0;
-      }
+      const double tw =
+          domain.topology().face_touches_boundary(static_cast<Index>(face)) ? 1.0 : tangent_weight;
       for (std::size_t k = start[face]; k < start[face + 1]; ++k) {
         const PointFit& f = fits[order[k]];
         st.clear();

@@ -36,14 +36,6 @@ void BuildControlFaceTree(const ManifoldDomain& domain, const std::vector<Vec3>&
   tree->Build(x, triangles);
 }
 
-// Whether a face has a boundary vertex.
-bool BesideBoundary(const ManifoldDomain& domain, Index face) {
-  for (int a = 0; a < 4; ++a) {
-    if (domain.topology().is_boundary_vertex(domain.topology().face_vertex(face, a))) return true;
-  }
-  return false;
-}
-
 // Yoon's projection (paper section 4, "Initial displacements") of point p, then the
 // optimisation of Eq. 5 (docs/notes/fit.md section 4b); fills *out.
 void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std::vector<Vec3>& x,
@@ -106,7 +98,8 @@ void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std
   r.status = PointFitStatus::kNotConverged;
   r.face = face1;
   r.uv = uv1;
-  if (!options.optimize && !(options.optimize_beside_boundary && BesideBoundary(domain, face1))) {
+  if (!options.optimize &&
+      !(options.optimize_beside_boundary && domain.topology().face_touches_boundary(face1))) {
     return;
   }
   const CommonDisplacementSolution s =
