@@ -32,7 +32,7 @@ struct FitArgs {
   std::string output;
   std::string control_mesh;
   std::string report;
-  int control_vertices = 540;
+  int control_vertices = FitOptions{}.control_vertices;
   int levels = DisplacementFitOptions{}.max_levels;
   double density = -1.0;  // < 0 here and below: the library's default for the input kind
   int finest_passes = DisplacementFitOptions{}.finest_passes;
@@ -47,7 +47,7 @@ struct FitArgs {
   double residual = -1.0;
   double budget = -1.0;
   double consistency = -1.0;
-  double holdout = 0.1;
+  double holdout = FitOptions{}.holdout;
   int threads = 0;
   bool quiet = false;
   double control_ratio = CharacterFitOptions{}.vertex_ratio;
@@ -382,10 +382,26 @@ int RunFit(const FitArgs& a) {
   return kExitOk;
 }
 
+// A default as --help shows it, read from the library's options (so that the help cannot drift
+// from them): "default X", or "default X for a surface, Y for a character" where they differ.
+std::string DefaultText(double surface, double character) {
+  auto num = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return std::string(buf);
+  };
+  if (surface == character) return "default " + num(surface);
+  return "default " + num(surface) + " for a surface, " + num(character) + " for a character";
+}
+
 }  // namespace
 
 void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   auto args = std::make_shared<FitArgs>();
+  const FitOptions surface;
+  const FitOptions character = CharacterFitOptions{}.fit;
+  const AdaptiveDisplacementOptions& sa = surface.displacement.adaptive;
+  const AdaptiveDisplacementOptions& ca = character.displacement.adaptive;
   CLI::App* cmd = app->add_subcommand(
       "fit", "Fit a displaced manifold surface to a dense mesh or point cloud; write .dsurf.");
   cmd->add_option("INPUT", args->input,
@@ -408,51 +424,62 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "mba (dense per-chart lattices, the paper's method)")
       ->check(CLI::IsMember({"adaptive", "mba"}));
   cmd->add_option("--node-weight", args->node_weight,
-                  "adaptive: points a lattice node needs under its support (density criterion; "
-                  "default 0.25)")
+                  "adaptive: points a lattice node needs under its support (density criterion; " +
+                      DefaultText(sa.min_node_weight, ca.min_node_weight) + ")")
       ->check(CLI::Range(1e-3, 1e3));
   cmd->add_option("--level-smoothing", args->level_smoothing,
-                  "adaptive: thin-plate weight of every level (default 1e-3 for a surface, 1e-4 "
-                  "for a character)")
+                  "adaptive: thin-plate weight of every level (" +
+                      DefaultText(sa.smoothing, ca.smoothing) + ")")
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--validation", args->validation,
-                  "adaptive: fraction of the points that decides how many levels to keep (default "
-                  "0.1 for a surface; 0, as for a character: levels stop when they improve the "
-                  "fitted points by less than --min-improvement)")
+                  "adaptive: fraction of the points that decides how many levels to keep (" +
+                      DefaultText(sa.validation, ca.validation) +
+                      "; with 0 levels stop when they improve the fitted points by less than "
+                      "--min-improvement)")
       ->check(CLI::Range(0.0, 0.9));
   cmd->add_option("--min-improvement", args->min_improvement,
                   "adaptive: a level is kept if it lowers the validation error by this fraction "
-                  "(default 0.01)")
+                  "(" +
+                      DefaultText(sa.min_improvement, ca.min_improvement) + ")")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--residual-threshold", args->residual,
                   "adaptive: a node of a finer level needs a residual above this multiple of "
-                  "the mean error (residual criterion; 0: off; default 0.5 for a surface, 1.2 for "
-                  "a character)")
+                  "the mean error (residual criterion; 0: off; " +
+                      DefaultText(sa.residual_threshold, ca.residual_threshold) + ")")
       ->check(CLI::Range(0.0, 100.0));
   cmd->add_option("--coefficients-per-point", args->budget,
                   "adaptive: at most this many displacement coefficients per fitted point (0: "
-                  "no limit; default 3)")
+                  "no limit; " +
+                      DefaultText(sa.max_coefficients_per_point, ca.max_coefficients_per_point) +
+                      ")")
       ->check(CLI::Range(0.0, 1e4));
   cmd->add_option("--consistency", args->consistency,
                   "adaptive: weight of every chart's agreement with the fitted displacement, "
-                  "next to the surface error (default 0.1)")
+                  "next to the surface error (" +
+                      DefaultText(sa.consistency, ca.consistency) + ")")
       ->check(CLI::Range(0.0, 1e3));
   cmd->add_option("--density", args->density,
                   "mba: finest lattice cells per side per sqrt(points in the chart); 0: all "
-                  "charts get --levels (default 1.0 for a surface, 2.2 for a character)")
+                  "charts get --levels (" +
+                      DefaultText(surface.displacement.density, character.displacement.density) +
+                      ")")
       ->check(CLI::Range(0.0, 64.0));
   cmd->add_option("--finest-passes", args->finest_passes,
                   "mba: BA passes at each chart's finest displacement level")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  cmd->add_option("--smoothing", args->smoothing,
-                  "mba: thin-plate weight of each chart's finest displacement level (0: plain "
-                  "MBA; default 5e-4 for a surface, 0 for a character)")
+  cmd->add_option(
+         "--smoothing", args->smoothing,
+         "mba: thin-plate weight of each chart's finest displacement level (0: plain "
+         "MBA; " +
+             DefaultText(surface.displacement.smoothing, character.displacement.smoothing) + ")")
       ->check(CLI::Range(0.0, 1e6));
-  cmd->add_option("--control-fit", args->control_fit,
-                  "Rounds of fitting the built control mesh's vertices to the data (0: keep "
-                  "them on the data; default 2 for a surface, 0 for a character; a "
-                  "--control-mesh is always used as is)")
+  cmd->add_option(
+         "--control-fit", args->control_fit,
+         "Rounds of fitting the built control mesh's vertices to the data (0: keep "
+         "them on the data; " +
+             DefaultText(surface.control_fit_iterations, character.control_fit_iterations) +
+             "; a --control-mesh is always used as is)")
       ->check(CLI::Range(0, 16));
   cmd->add_option("--patch-agreement", args->patch_agreement,
                   "Control-vertex fit: weight of the corner patches' agreement with each other "
