@@ -16,7 +16,8 @@
 //                             [--control-vertices N] [--torus-vertices N] [--torus-draws N]
 //                             [--control-method remesh|simplify]
 //                             [--density D] [--control-fit ITERATIONS] [--tangent-weight T]
-//                             [--tangent-damping D] [--patch-agreement W] [--finest-passes P]
+//                             [--tangent-damping D] [--patch-agreement W] [--robust-cutoff C]
+//                             [--chart-type characteristic|complex|isodistance] [--finest-passes P]
 //                             [--smoothing S] [--samples S] [--crease-samples C] [--crease-angle A]
 //                             [--max-turn T] [--repeat R] [--where] [--node-weight W]
 //                             [--budget COEFFICIENTS_PER_POINT]
@@ -189,6 +190,8 @@ struct Settings {
   double tangent_weight = -1.0;   // -1: ControlFitOptions' default
   double tangent_damping = -1.0;  // -1: ControlFitOptions' default
   double patch_agreement = -1.0;  // -1: ControlFitOptions' default
+  double robust_cutoff = -1.0;    // -1: ControlFitOptions' default (0: no robust weights)
+  int chart_type = -1;            // -1: DomainOptions' default; else a ChartType value
   int finest_passes = -1;         // -1: FitOptions' default
   double smoothing = -1.0;        // -1: FitOptions' default
   double samples = -1.0;          // -1: CharacterFitOptions' default
@@ -210,6 +213,8 @@ void ApplySettings(const Settings& st, FitOptions* options) {
   if (st.tangent_weight >= 0.0) options->control_fit.tangent_weight = st.tangent_weight;
   if (st.tangent_damping >= 0.0) options->control_fit.tangent_damping = st.tangent_damping;
   if (st.patch_agreement >= 0.0) options->control_fit.patch_agreement = st.patch_agreement;
+  if (st.robust_cutoff >= 0.0) options->control_fit.robust_cutoff = st.robust_cutoff;
+  if (st.chart_type >= 0) options->domain.chart_type = static_cast<ChartType>(st.chart_type);
   if (st.finest_passes >= 1) options->displacement.finest_passes = st.finest_passes;
   if (st.smoothing >= 0.0) options->displacement.smoothing = st.smoothing;
   if (st.mba) options->displacement.method = DisplacementMethod::kMba;
@@ -773,6 +778,13 @@ int main(int argc, char** argv) {
       st.tangent_damping = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--patch-agreement") == 0 && i + 1 < argc) {
       st.patch_agreement = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--chart-type") == 0 && i + 1 < argc) {
+      const char* t = argv[++i];
+      st.chart_type = std::strcmp(t, "complex") == 0       ? 1
+                      : std::strcmp(t, "isodistance") == 0 ? 2
+                                                           : 0;
+    } else if (std::strcmp(argv[i], "--robust-cutoff") == 0 && i + 1 < argc) {
+      st.robust_cutoff = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--finest-passes") == 0 && i + 1 < argc) {
       st.finest_passes = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--smoothing") == 0 && i + 1 < argc) {
