@@ -122,7 +122,16 @@ expect_help_defaults("${report}" surface)
 expect_run(0 "displacement levels 2 of" ${DERMIS} tessellate ${WORK}/fit/torus.dsurf
            -o ${WORK}/fit/torus_l2.obj --level 4 --displacement-levels 2)
 expect_run(0 "" ${DERMIS} tessellate ${WORK}/fit/torus.dsurf -o ${WORK}/fit/torus.obj -q)
+# A .dsurf carries its charts and blending: options that would set them are refused.
+expect_run(2 "--chart, --blend-lb: .*torus\\.dsurf carries its own" ${DERMIS} tessellate
+           ${WORK}/fit/torus.dsurf -o ${WORK}/fit/torus_chart.obj --chart complex --blend-lb 0.1)
 # Bad fit inputs: exit 1, a message naming the file, nothing written.
+# An option only the other kind of input takes is refused (usage, nothing written), not ignored.
+expect_run(2 "--refit applies to a character.*dense_torus\\.obj is a surface" ${DERMIS} fit
+           ${WORK}/dense_torus.obj -o ${WORK}/bad_refit.dsurf --refit)
+if(EXISTS ${WORK}/bad_refit.dsurf)
+  message(FATAL_ERROR "a refused fit wrote bad_refit.dsurf")
+endif()
 expect_run(1 "missing.obj" ${DERMIS} fit ${WORK}/missing.obj -o ${WORK}/bad1.dsurf)
 file(WRITE ${WORK}/empty.obj "# nothing\n")
 expect_run(1 "empty.obj" ${DERMIS} fit ${WORK}/empty.obj -o ${WORK}/bad2.dsurf)
@@ -183,6 +192,9 @@ expect_run(0 "displacement levels 0: distance to data mean" ${DERMIS} render
 expect_png(${WORK}/pic/series.png 2000)
 expect_run(2 "--series" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/x.png
            --series 0,two)
+# --series takes the levels --displacement-levels takes (-1..13).
+expect_run(2 "levels -1\\.\\.13" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/x.png
+           --series 0,14)
 expect_run(0 "" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/turn.png
            --size 100x100 --turntable 4 --frame-files -q)
 expect_png(${WORK}/pic/turn.png 2000)
@@ -232,6 +244,21 @@ foreach(key parts_fitted parts_unfitted vertices_bound e1_mean e1_max unfitted)
   endif()
 endforeach()
 expect_help_defaults("${report}" character)
+# A character's report leaves out the options a character fit does not take; those options
+# are refused on a character.
+foreach(key control-vertices holdout patch-agreement)
+  string(FIND "${report}" "\"${key}\"" at)
+  if(NOT at LESS 0)
+    message(FATAL_ERROR "skin.json lists the surface option ${key}:\n${report}")
+  endif()
+endforeach()
+expect_run(2 "--control-vertices and --holdout apply to a surface.*SimpleSkin\\.gltf is a character"
+           ${DERMIS} fit ${skin} -o ${ch}/bad_opts.dsurf --control-vertices 50 --holdout 0.2)
+expect_run(2 "--control-mesh applies to a surface" ${DERMIS} fit ${skin} -o ${ch}/bad_opts.dsurf
+           --control-mesh ${WORK}/quad.obj)
+if(EXISTS ${ch}/bad_opts.dsurf)
+  message(FATAL_ERROR "a refused character fit wrote bad_opts.dsurf")
+endif()
 expect_run(0 "parts +1 fitted, 0 unfitted" ${DERMIS} inspect ${ch}/skin.dsurf)
 expect_run(0 "\"character\"" ${DERMIS} inspect ${ch}/skin.dsurf --json)
 expect_run(0 "bound mode" ${DERMIS} export ${ch}/skin.dsurf -o ${ch}/bound.glb --embed)

@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "character_json.h"
 #include "commands.h"
@@ -52,7 +53,20 @@ struct FitArgs {
   bool quiet = false;
   double control_ratio = CharacterFitOptions{}.vertex_ratio;
   bool refit = false;
+  // Options given on the command line that only one kind of input takes (set at parse time):
+  // a fit of the other kind refuses them instead of ignoring them.
+  std::vector<std::string> surface_only, character_only;
 };
+
+// "--a", "--a and --b", "--a, --b and --c".
+std::string ListOptions(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " and " : ", ";
+    out += names[i];
+  }
+  return out;
+}
 
 nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
   const QuadRemeshReport& q = c.quality;
@@ -204,6 +218,10 @@ Json ReportJson(const FitArgs& a, const FitOptions& options, const FitReport& r)
 Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, const Character& ch,
                          const CharacterFitReport& r) {
   Json options_json = EffectiveOptionsJson(a, options.fit);
+  // A character's control meshes follow --control-ratio, and every vertex is fitted.
+  for (const char* key : {"control-vertices", "patch-agreement", "holdout"}) {
+    options_json.erase(key);
+  }
   options_json["control-ratio"] = options.vertex_ratio;
   options_json["refit"] = a.refit;
   Json j;
@@ -310,7 +328,18 @@ int RunFitCharacter(const FitArgs& a) {
 
 int RunFit(const FitArgs& a) {
   // A file a scan importer takes is one surface; anything else is a character.
-  if (Importers().Find(a.input, ImportKind::kScan) == nullptr) return RunFitCharacter(a);
+  const bool character = Importers().Find(a.input, ImportKind::kScan) == nullptr;
+  const std::vector<std::string>& refused = character ? a.surface_only : a.character_only;
+  if (!refused.empty()) {
+    const char* verb = refused.size() == 1 ? " applies" : " apply";
+    return Usage(
+        kFitCommand,
+        character ? ListOptions(refused) + verb + " to a surface (.obj, .ply), and " + a.input +
+                        " is a character: its control meshes follow --control-ratio"
+                  : ListOptions(refused) + verb + " to a character (.glb, .gltf, .fbx, ...), and " +
+                        a.input + " is a surface");
+  }
+  if (character) return RunFitCharacter(a);
   PolygonMesh mesh;
   Index dropped = 0;
   Status s = ReadFitInput(a.input, &mesh, &dropped, &Importers());
@@ -410,11 +439,11 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
       ->required();
   cmd->add_option("-o,--output", args->output, "Output .dsurf")->required();
   cmd->add_option("--control-vertices", args->control_vertices,
-                  "Control vertices of the automatic control mesh")
+                  "Surfaces: control vertices of the automatic control mesh")
       ->check(CLI::Range(8, 10000000))
       ->capture_default_str();
   cmd->add_option("--control-mesh", args->control_mesh,
-                  "Use this polygon OBJ as the control mesh (as is)");
+                  "Surfaces: use this polygon OBJ as the control mesh (as is)");
   cmd->add_option("--levels", args->levels, "Most displacement levels per chart")
       ->check(CLI::Range(1, kMaxBsplineLevels))
       ->capture_default_str();
@@ -482,12 +511,15 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
              "; a --control-mesh is always used as is)")
       ->check(CLI::Range(0, 16));
   cmd->add_option("--patch-agreement", args->patch_agreement,
-                  "Control-vertex fit: weight of the corner patches' agreement with each other "
+                  "Surfaces: the control-vertex fit's weight of the corner patches' agreement "
+                  "with each other "
                   "(makes the fit without per-point optimisation closer, the domain surface "
                   "farther; docs/fitting.md)")
       ->check(CLI::Range(0.0, 1e3))
       ->capture_default_str();
-  cmd->add_option("--holdout", args->holdout, "Fraction of points held out to measure error")
+  cmd->add_option("--holdout", args->holdout,
+                  "Surfaces: fraction of points held out to measure error (a character fits "
+                  "every vertex)")
       ->check(CLI::Range(0.0, 0.9))
       ->capture_default_str();
   AddThreadsOption(cmd, &args->threads);
@@ -504,7 +536,18 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
       [args] {
         return std::vector<std::string>{args->output, args->report};
       },
-      [args] { return RunFit(*args); });
+      [args] { return RunFit(*args); },
+      [args, cmd] {
+        args->surface_only.clear();
+        args->character_only.clear();
+        for (const char* name :
+             {"--control-vertices", "--control-mesh", "--patch-agreement", "--holdout"}) {
+          if (cmd->count(name) > 0) args->surface_only.push_back(name);
+        }
+        for (const char* name : {"--control-ratio", "--refit"}) {
+          if (cmd->count(name) > 0) args->character_only.push_back(name);
+        }
+      });
 }
 
 }  // namespace dermis::cli

@@ -582,7 +582,8 @@ void AddInspectCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_flag("--json", args->json,
                 "Print one JSON object (\"schema\": \"dermis.inspect/1\") instead of text");
   cmd->add_option("--memory-level", args->memory_level,
-                  "Tessellation level whose runtime output memory is reported for a surface")
+                  "Tessellation level whose runtime output memory is reported (a surface's, or a "
+                  "character's lod output beside its bound one)")
       ->check(CLI::Range(1, 64))
       ->default_val(4);
   cmd->callback([run, args]() { *run = [args]() { return RunInspect(*args); }; });

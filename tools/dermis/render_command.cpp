@@ -20,6 +20,7 @@
 #include "dermis/offline/character/skin_transfer.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/offline/io/point_input.h"
+#include "dermis/surface/bspline_displacement.h"
 #include "dermis/surface/tessellation.h"
 #include "importers.h"
 #include "progress_bar.h"
@@ -165,7 +166,8 @@ bool ParseSize(const std::string& s, int* w, int* h) {
   return *w >= 16 && *h >= 16 && *w <= 8192 && *h <= 8192;
 }
 
-// The displacement levels of --series "0,2,-1" (each in -1..16); false if it is malformed.
+// The displacement levels of --series "0,2,-1" (each in -1..kMaxBsplineLevels, the range of
+// --displacement-levels); false if it is malformed.
 bool ParseSeries(const std::string& series, std::vector<int>* levels) {
   levels->clear();
   std::size_t at = 0;
@@ -174,7 +176,8 @@ bool ParseSeries(const std::string& series, std::vector<int>* levels) {
     const std::string item = series.substr(at, comma - at);
     int L = -2;
     const auto r = std::from_chars(item.data(), item.data() + item.size(), L);
-    if (r.ec != std::errc() || r.ptr != item.data() + item.size() || L < -1 || L > 16) {
+    if (r.ec != std::errc() || r.ptr != item.data() + item.size() || L < -1 ||
+        L > kMaxBsplineLevels) {
       return false;
     }
     levels->push_back(L);
@@ -243,8 +246,8 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
   // One surface per displacement level of --series (or the one --displacement-levels).
   std::vector<int> levels = {a.displacement_levels};
   if (!a.series.empty() && !ParseSeries(a.series, &levels)) {
-    return Usage(kRenderCommand,
-                 "--series '" + a.series + "' must list displacement levels -1..16, e.g. 0,2,4");
+    return Usage(kRenderCommand, "--series '" + a.series + "' must list displacement levels -1.." +
+                                     std::to_string(kMaxBsplineLevels) + ", e.g. 0,2,4");
   }
   std::vector<std::vector<render::Mesh>> surfaces(levels.size());
   for (std::size_t k = 0; k < levels.size(); ++k) {
@@ -476,14 +479,17 @@ void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
       "error.");
   cmd->add_option("INPUT", args->input, "Fitted surface or character (.dsurf)")->required();
   cmd->add_option("-o,--output", args->output, "Picture (.png)")->required();
-  cmd->add_option("--clip", args->clip, "Clip name or index (default 0; 'rest': the rest pose)");
+  cmd->add_option("--clip", args->clip,
+                  "Clip name or index (default: 0, or the rest pose when there are no clips; "
+                  "'rest': the rest pose)");
   cmd->add_option("--time", args->time, "Seconds from the clip's start")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
   cmd->add_option("--frames", args->frames, "Draw N frames evenly over the clip as a contact sheet")
       ->check(CLI::Range(1, 256));
   cmd->add_flag("--frame-files", args->frame_files,
-                "With --frames or --turntable: also write OUTPUT_000.png, OUTPUT_001.png, ...");
+                "With --frames, --turntable or --series: also write OUTPUT_000.png, "
+                "OUTPUT_001.png, ...");
   cmd->add_option("--turntable", args->turntable, "Draw N views around the vertical axis")
       ->check(CLI::Range(1, 64));
   cmd->add_option("--columns", args->columns, "Columns of the contact sheet (default: square)")

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "character_args.h"
 #include "commands.h"
@@ -35,6 +36,9 @@ struct TessellateArgs {
   double blend_lb = DomainOptions{}.blend_lb;
   int displacement_levels = -1;
   bool quiet = false;
+  // --chart, --blend and --blend-lb as given on the command line (set at parse time): a .dsurf
+  // carries its own, so they are refused there rather than ignored.
+  std::vector<std::string> domain_options;
 };
 
 bool IsDsurf(const std::string& path) { return LowerExtension(path) == ".dsurf"; }
@@ -106,7 +110,16 @@ int RunTessellate(const TessellateArgs& a) {
   if (a.input.empty() == a.builtin.empty()) {
     return Usage(kTessellateCommand, "give exactly one of INPUT or --builtin NAME");
   }
-  if (IsDsurf(a.input)) return RunTessellateDsurf(a, t0);
+  if (IsDsurf(a.input)) {
+    if (!a.domain_options.empty()) {
+      std::string list;
+      for (const std::string& o : a.domain_options) list += (list.empty() ? "" : ", ") + o;
+      return Usage(kTessellateCommand, list + ": " + a.input +
+                                           " carries its own charts and blending; these options "
+                                           "apply to a control mesh (.obj, .ply, --builtin)");
+    }
+    return RunTessellateDsurf(a, t0);
+  }
   PolygonMesh mesh;
   Status s;
   if (!a.builtin.empty()) {
@@ -168,7 +181,8 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
       "tessellate",
       "Build the manifold surface of a polygon control mesh and write it tessellated as OBJ.");
   cmd->add_option("INPUT", args->input,
-                  "Control mesh: a polygon OBJ (triangles, quads, n-gons), or a fitted .dsurf");
+                  "Control mesh: a polygon OBJ or PLY (triangles, quads, n-gons), or a fitted "
+                  "surface .dsurf (version 1 or 3; its charts and blending come from the file)");
   std::string names;
   for (const std::string& n : BuiltinMeshNames()) names += (names.empty() ? "" : ", ") + n;
   cmd->add_option("--builtin", args->builtin, "Use a built-in control mesh instead: " + names);
@@ -189,7 +203,14 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
   AddQuietFlag(cmd, &args->quiet);
   SetRunWithOutputs(
       cmd, run, kTessellateCommand, [args] { return std::vector<std::string>{args->output}; },
-      [args] { return RunTessellate(*args); }, nullptr, /*stdout_ok=*/true);
+      [args] { return RunTessellate(*args); },
+      [args, cmd] {
+        args->domain_options.clear();
+        for (const char* name : {"--chart", "--blend", "--blend-lb"}) {
+          if (cmd->count(name) > 0) args->domain_options.push_back(name);
+        }
+      },
+      /*stdout_ok=*/true);
 }
 
 }  // namespace dermis::cli
