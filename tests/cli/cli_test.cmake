@@ -81,6 +81,7 @@ expect_run(0 "wrote" ${DERMIS} fit ${WORK}/dense_torus.obj -o ${WORK}/fit/torus.
            --control-vertices 150 --threads 2 --report ${WORK}/fit/report.json)
 file(READ ${WORK}/fit/report.json report)
 foreach(key points points_dropped control_vertices control_faces coefficients mean rms max
+        points_not_converged points_not_converged_placed
         unoptimized_mean holdout_mean holdout_max hausdorff_percent_diagonal control_mesh
         projection_optimization displacement total)
   string(FIND "${report}" "\"${key}\"" at)

@@ -160,6 +160,7 @@ Json ReportJson(const FitArgs& a, const FitOptions& options, const FitReport& r)
   j["points_holdout"] = r.points_holdout;
   j["points_outside"] = r.points_outside;
   j["points_not_converged"] = r.points_not_converged;
+  j["points_not_converged_placed"] = r.points_not_converged_placed;
   j["control_vertices"] = r.control_vertices;
   j["control_faces"] = r.control_faces;
   j["control_fit_rounds"] = r.control_fit_rounds;

@@ -11,6 +11,7 @@
 
 #include "dermis/dsurf/dsurf.h"
 #include "dermis/offline/build/control_mesh.h"
+#include "dermis/offline/fit/lost_point_parameters.h"
 #include "dermis/offline/fit/point_fit.h"
 #include "dermis/offline/fit/surface_projection.h"
 #include "dermis/offline/geometry/builtin_meshes.h"
@@ -291,6 +292,88 @@ TEST_CASE("fit: FitPoints can solve only beside a boundary") {
   // Both kinds occur: 10 of the 12 faces have a boundary vertex.
   CHECK(solved > static_cast<int>(points.size()) / 2);
   CHECK(projected > static_cast<int>(points.size()) / 12);
+}
+
+TEST_CASE("fit: PlaceLostPoints gives a lost point its closest surface point") {
+  // Points near the built-in grid's saddle (4 x 3 quads, open) and beyond its boundary, marked
+  // not converged at a wrong parameter (a far corner of a face sharing a vertex with theirs,
+  // as a projection onto the wrong patch gives): afterwards the
+  // surface at their parameter is as close to them as a level-64 tessellation of the surface
+  // says it can be (an independent exact point-to-triangle distance). Optimised and outside
+  // fits are left alone, and the thread count changes nothing.
+  PolygonMesh grid;
+  REQUIRE(MakeBuiltinMesh("grid", &grid).ok());
+  ControlSurface surface;
+  REQUIRE(BuildControlSurface(grid, DomainOptions(), &surface).ok());
+  const ManifoldDomain& domain = *surface.domain;
+  const LocalPatch* patches = surface.patches.data();
+  const MeshTopology& topo = domain.topology();
+  std::vector<Vec3> points;
+  std::vector<PointFit> fits;
+  for (Index f = 0; f < domain.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 uv(0.2 + 0.3 * k, 0.7 - 0.25 * k);
+      SurfacePoint sp;
+      REQUIRE(EvaluateSurface(domain, patches, nullptr, f, uv, &sp));
+      PointFit fit;
+      fit.status = PointFitStatus::kNotConverged;
+      const RingCorner rc = topo.ring(topo.face_vertex(f, k + 1), 0);
+      fit.face = rc.face != f ? rc.face
+                              : topo.ring(topo.face_vertex(f, k + 1),
+                                          topo.valence(topo.face_vertex(f, k + 1)) - 1)
+                                    .face;
+      fit.uv = Vec2(k == 1 ? 0.95 : 0.05, 0.9);
+      // Off the surface along its normal, and for k = 2 also outward past the boundary.
+      Vec3 p = sp.position + (0.03 - 0.02 * k) * sp.normal;
+      if (k == 2 && topo.face_touches_boundary(f)) p += 0.8 * glm::normalize(Vec3(p.x, p.y, 0.0));
+      points.push_back(p);
+      fits.push_back(fit);
+    }
+  }
+  // One optimised and one outside fit, which must not move.
+  PointFit optimised = fits[0], outside = fits[1];
+  optimised.status = PointFitStatus::kOptimized;
+  outside.status = PointFitStatus::kOutside;
+  points.push_back(points[0]), fits.push_back(optimised);
+  points.push_back(points[1]), fits.push_back(outside);
+
+  std::vector<PointFit> one = fits, two = fits;
+  const std::int64_t moved = PlaceLostPoints(domain, patches, nullptr, points, &one, 8, 1);
+  CHECK(PlaceLostPoints(domain, patches, nullptr, points, &two, 8, 2) == moved);
+  CHECK(moved == static_cast<std::int64_t>(points.size()) - 2);
+
+  TessellationPattern pattern;
+  REQUIRE(TessellationPattern::Build(topo, 64, &pattern).ok());
+  std::vector<Vec3> xs(pattern.samples.size());
+  REQUIRE(EvaluateSamples(domain, patches, nullptr, pattern.samples.data(), xs.size(), xs.data(),
+                          nullptr));
+  TriangleDistanceTree tree;
+  REQUIRE(tree.Build(xs, pattern.triangles));
+  int beyond = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    INFO("point " << i);
+    CHECK(one[i].face == two[i].face);
+    CHECK(one[i].uv == two[i].uv);
+    if (fits[i].status != PointFitStatus::kNotConverged) {
+      CHECK(one[i].face == fits[i].face);
+      CHECK(one[i].uv == fits[i].uv);
+      continue;
+    }
+    SurfacePoint before, after;
+    REQUIRE(EvaluateSurface(domain, patches, nullptr, fits[i].face, fits[i].uv, &before));
+    REQUIRE(EvaluateSurface(domain, patches, nullptr, one[i].face, one[i].uv, &after));
+    const double d = glm::length(after.position - points[i]);
+    const double reference = tree.Query(points[i]).distance;
+    // The tessellation's vertices lie on the surface and its chords within about 3e-5 of it
+    // (faces of unit size, 64 segments): the closest point found must agree to that.
+    CHECK(std::abs(d - reference) <= 1e-4);
+    CHECK(d < glm::length(before.position - points[i]));
+    CHECK(one[i].status == PointFitStatus::kNotConverged);
+    beyond += reference > 0.1;
+  }
+  // Points well past the boundary, whose closest point is on it (where Gauss-Newton alone
+  // stopped up to 9e-4 short).
+  CHECK(beyond >= 6);
 }
 
 TEST_CASE("fit: a control-mesh target equal to the full split keeps every triangle") {

@@ -96,6 +96,9 @@ struct FitReport {
   std::int64_t points_holdout = 0;        ///< Held out.
   std::int64_t points_outside = 0;        ///< Left every chart in projection (not fitted).
   std::int64_t points_not_converged = 0;  ///< Fitted from their projection only (folds).
+  /// Of those, the ones whose parameter became their closest point on the fitted surface
+  /// (PlaceLostPoints: closer than the projection's parameter).
+  std::int64_t points_not_converged_placed = 0;
   std::int64_t control_vertices = 0, control_faces = 0;
   /// How the control mesh was built and its quality (method "given" for a given one).
   ControlMeshInfo control_mesh;

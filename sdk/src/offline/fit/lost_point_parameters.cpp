@@ -1,0 +1,217 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The points whose common-displacement solve (paper section 4, docs/notes/fit.md section 4b)
+// does not converge keep the projection's parameter, which can be far from where the fitted
+// surface passes them: that parameter is the nearest patch's closest point, and beside a
+// boundary or a sharp rim the blended surface there is elsewhere. Their parameter becomes the
+// closest point of the fitted surface (paper Eq. 4), searched from the nearest sample of a
+// grid over the faces around the point as well as from the parameter itself (docs/fitting.md,
+// "Points the optimisation loses").
+#include "dermis/offline/fit/lost_point_parameters.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dermis/core/parallel.h"
+#include "dermis/offline/fit/surface_projection.h"
+#include "dermis/surface/manifold_domain.h"
+#include "dermis/surface/surface_evaluator.h"
+
+namespace dermis {
+namespace {
+
+// The faces within two face rings of `face` (sharing a vertex with a face that shares a vertex
+// with it), sorted.
+std::vector<Index> FaceNeighbourhood(const MeshTopology& topo, Index face) {
+  std::vector<Index> faces = {face};
+  for (int ring = 0; ring < 2; ++ring) {
+    std::vector<Index> next = faces;
+    for (Index f : faces) {
+      for (Index k = 0; k < topo.face_size(f); ++k) {
+        const Index v = topo.face_vertex(f, static_cast<int>(k));
+        for (int i = 0; i < topo.valence(v); ++i) next.push_back(topo.ring(v, i).face);
+      }
+    }
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    faces = std::move(next);
+  }
+  return faces;
+}
+
+// Face coordinates of parameter t in [0, 1] along edge e of a quad (corners (0,0), (1,0), (1,1),
+// (0,1); edge e runs from corner e to corner e + 1).
+Vec2 EdgePoint(int e, double t) {
+  switch (e) {
+    case 0:
+      return Vec2(t, 0.0);
+    case 1:
+      return Vec2(1.0, t);
+    case 2:
+      return Vec2(1.0 - t, 1.0);
+    default:
+      return Vec2(0.0, 1.0 - t);
+  }
+}
+
+// The boundary edge of `face` nearest to uv if uv lies within `reach` of it (face coordinates),
+// or -1. Gauss-Newton halves a step that would leave the surface, so it approaches a boundary
+// edge without landing on it.
+int BoundaryEdgeNear(const MeshTopology& topo, Index face, Vec2 uv, double reach) {
+  const double d[4] = {uv.y, 1.0 - uv.x, 1.0 - uv.y, uv.x};
+  int best = -1;
+  for (int e = 0; e < 4; ++e) {
+    if (d[e] <= reach && topo.twin(topo.face_offset(face) + e) == kInvalidIndex &&
+        (best < 0 || d[e] < d[best])) {
+      best = e;
+    }
+  }
+  return best;
+}
+
+// Gauss-Newton stops short on a boundary: a step that leaves the surface is halved, and its
+// part along the boundary with it. Where the search ended beside a boundary edge, the closest
+// point along every boundary edge of `faces` is searched in one dimension: 8 samples per edge,
+// then golden sections around the best. Updates the parameter and the distance if closer.
+void SlideAlongBoundary(const ManifoldDomain& domain, const LocalPatch* patches,
+                        const Displacement* displacement, const Vec3& p,
+                        const std::vector<Index>& faces, Index* face, Vec2* uv, double* best) {
+  const MeshTopology& topo = domain.topology();
+  if (BoundaryEdgeNear(topo, *face, *uv, 0.05) < 0) return;
+  auto distance = [&](Index f, int e, double t) {
+    SurfacePoint sp;
+    if (!EvaluateSurface(domain, patches, displacement, f, EdgePoint(e, t), &sp)) {
+      return std::numeric_limits<double>::infinity();
+    }
+    return glm::length(sp.position - p);
+  };
+  for (Index f : faces) {
+    for (int e = 0; e < 4; ++e) {
+      const Index h = topo.face_offset(f) + e;
+      if (topo.twin(h) != kInvalidIndex) continue;
+      constexpr int kSamples = 8;
+      double bt = 0.0, bd = std::numeric_limits<double>::infinity();
+      for (int i = 0; i <= kSamples; ++i) {
+        const double t = static_cast<double>(i) / kSamples;
+        const double dist = distance(f, e, t);
+        if (dist < bd) bd = dist, bt = t;
+      }
+      double lo = std::max(0.0, bt - 1.0 / kSamples), hi = std::min(1.0, bt + 1.0 / kSamples);
+      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+      double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+      double f1 = distance(f, e, x1), f2 = distance(f, e, x2);
+      for (int it = 0; it < 30; ++it) {
+        if (f1 < f2) {
+          hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = distance(f, e, x1);
+        } else {
+          lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = distance(f, e, x2);
+        }
+      }
+      if (f1 < bd) bd = f1, bt = x1;
+      if (f2 < bd) bd = f2, bt = x2;
+      if (bd < *best) *best = bd, *face = f, *uv = EdgePoint(e, bt);
+    }
+  }
+}
+
+}  // namespace
+
+std::int64_t PlaceLostPoints(const ManifoldDomain& domain, const LocalPatch* patches,
+                             const Displacement* displacement, const std::vector<Vec3>& points,
+                             std::vector<PointFit>* fits, int level, int threads) {
+  if (fits->size() != points.size()) return 0;
+  const MeshTopology& topo = domain.topology();
+  std::vector<std::size_t> lost;
+  for (std::size_t i = 0; i < fits->size(); ++i) {
+    const PointFit& f = (*fits)[i];
+    if (f.status == PointFitStatus::kNotConverged && f.face >= 0 && f.face < topo.num_faces()) {
+      lost.push_back(i);
+    }
+  }
+  if (lost.empty()) return 0;
+  // Each lost point's neighbourhood, and a grid of (level + 1)^2 samples on every face of them.
+  const int n = std::max(level, 1);
+  const std::size_t per_face = static_cast<std::size_t>((n + 1) * (n + 1));
+  std::vector<std::vector<Index>> around(lost.size());
+  std::vector<Index> faces;
+  for (std::size_t k = 0; k < lost.size(); ++k) {
+    around[k] = FaceNeighbourhood(topo, (*fits)[lost[k]].face);
+    faces.insert(faces.end(), around[k].begin(), around[k].end());
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  std::vector<Vec3> grid(faces.size() * per_face);
+  std::vector<char> valid(grid.size(), 0);
+  const int nthreads = ResolveThreadCount(threads);
+  ParallelFor(nthreads, faces.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t q = b; q < e; ++q) {
+      for (int j = 0; j <= n; ++j) {
+        for (int i = 0; i <= n; ++i) {
+          const std::size_t s = q * per_face + static_cast<std::size_t>(j * (n + 1) + i);
+          SurfacePoint sp;
+          if (EvaluateSurface(domain, patches, displacement, faces[q],
+                              Vec2(static_cast<double>(i) / n, static_cast<double>(j) / n), &sp)) {
+            grid[s] = sp.position;
+            valid[s] = 1;
+          }
+        }
+      }
+    }
+  });
+  std::vector<char> moved(lost.size(), 0);
+  ParallelFor(nthreads, lost.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
+      PointFit& f = (*fits)[lost[k]];
+      const Vec3& p = points[lost[k]];
+      double best = std::numeric_limits<double>::infinity();
+      SurfacePoint sp;
+      if (EvaluateSurface(domain, patches, displacement, f.face, f.uv, &sp)) {
+        best = glm::length(sp.position - p);
+      }
+      Index best_face = f.face;
+      Vec2 best_uv = f.uv;
+      // Start 1: the fit's own parameter.
+      {
+        Index face = f.face;
+        Vec2 uv = f.uv;
+        const double d = ClosestPointOnSurface(domain, patches, displacement, p, &face, &uv);
+        if (d < best) best = d, best_face = face, best_uv = uv;
+      }
+      // Start 2: the nearest grid sample around it (the first of equals, in face order).
+      double nearest = std::numeric_limits<double>::infinity();
+      Index seed_face = kInvalidIndex;
+      Vec2 seed_uv(0.0);
+      for (Index face : around[k]) {
+        const auto q = static_cast<std::size_t>(std::lower_bound(faces.begin(), faces.end(), face) -
+                                                faces.begin());
+        for (std::size_t s = 0; s < per_face; ++s) {
+          if (!valid[q * per_face + s]) continue;
+          const Vec3 d = grid[q * per_face + s] - p;
+          const double d2 = glm::dot(d, d);
+          if (d2 < nearest) {
+            nearest = d2;
+            seed_face = face;
+            seed_uv = Vec2(static_cast<double>(s % static_cast<std::size_t>(n + 1)) / n,
+                           static_cast<double>(s / static_cast<std::size_t>(n + 1)) / n);
+          }
+        }
+      }
+      if (seed_face != kInvalidIndex) {
+        const double d =
+            ClosestPointOnSurface(domain, patches, displacement, p, &seed_face, &seed_uv);
+        if (d < best) best = d, best_face = seed_face, best_uv = seed_uv;
+      }
+      SlideAlongBoundary(domain, patches, displacement, p, around[k], &best_face, &best_uv, &best);
+      if (best_face != f.face || best_uv != f.uv) {
+        f.face = best_face;
+        f.uv = best_uv;
+        moved[k] = 1;
+      }
+    }
+  });
+  std::int64_t count = 0;
+  for (char m : moved) count += m;
+  return count;
+}
+
+}  // namespace dermis
