@@ -56,6 +56,8 @@ struct FitArgs {
   // Options given on the command line that only one kind of input takes (set at parse time):
   // a fit of the other kind refuses them instead of ignoring them.
   std::vector<std::string> surface_only, character_only;
+  // Options that build or move the automatic control mesh, refused with --control-mesh.
+  std::vector<std::string> automatic_only;
 };
 
 // "--a", "--a and --b", "--a, --b and --c".
@@ -220,9 +222,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
                          const CharacterFitReport& r) {
   Json options_json = EffectiveOptionsJson(a, options.fit);
   // A character's control meshes follow --control-ratio, and every vertex is fitted.
-  for (const char* key : {"control-vertices", "patch-agreement", "holdout"}) {
-    options_json.erase(key);
-  }
+  for (const char* key : {"control-vertices", "holdout"}) options_json.erase(key);
   options_json["control-ratio"] = options.vertex_ratio;
   options_json["refit"] = a.refit;
   Json j;
@@ -281,6 +281,7 @@ int RunFitCharacter(const FitArgs& a) {
   options.vertex_ratio = a.control_ratio;
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
+  options.fit.control_fit.patch_agreement = a.patch_agreement;
   options.fit.threads = a.threads;
   ProgressBar progress(kFitCommand, a.quiet);
   options.progress = progress.Callback();
@@ -336,9 +337,17 @@ int RunFit(const FitArgs& a) {
     return Usage(
         kFitCommand,
         character ? ListOptions(refused) + verb + " to a surface (.obj, .ply), and " + a.input +
-                        " is a character: its control meshes follow --control-ratio"
+                        " is read as a character (glTF, or a format Assimp reads): its "
+                        "control meshes follow --control-ratio"
                   : ListOptions(refused) + verb + " to a character (.glb, .gltf, .fbx, ...), and " +
                         a.input + " is a surface");
+  }
+  // A given control mesh is used as is: the options that build or move one do not apply.
+  if (!a.control_mesh.empty() && !a.automatic_only.empty()) {
+    const char* verb = a.automatic_only.size() == 1 ? " applies" : " apply";
+    return Usage(kFitCommand, ListOptions(a.automatic_only) + verb +
+                                  " to the automatic control mesh, and --control-mesh gives one, "
+                                  "used as is");
   }
   if (character) return RunFitCharacter(a);
   PolygonMesh mesh;
@@ -512,8 +521,7 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
              "; a --control-mesh is always used as is)")
       ->check(CLI::Range(0, 16));
   cmd->add_option("--patch-agreement", args->patch_agreement,
-                  "Surfaces: the control-vertex fit's weight of the corner patches' agreement "
-                  "with each other "
+                  "Control-vertex fit: weight of the corner patches' agreement with each other "
                   "(makes the fit without per-point optimisation closer, the domain surface "
                   "farther; docs/fitting.md)")
       ->check(CLI::Range(0.0, 1e3))
@@ -541,12 +549,14 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
       [args, cmd] {
         args->surface_only.clear();
         args->character_only.clear();
-        for (const char* name :
-             {"--control-vertices", "--control-mesh", "--patch-agreement", "--holdout"}) {
+        args->automatic_only.clear();
+        for (const char* name : {"--control-vertices", "--control-mesh", "--holdout"}) {
           if (cmd->count(name) > 0) args->surface_only.push_back(name);
         }
-        for (const char* name : {"--control-ratio", "--refit"}) {
-          if (cmd->count(name) > 0) args->character_only.push_back(name);
+        if (cmd->count("--control-ratio") > 0) args->character_only.push_back("--control-ratio");
+        if (args->refit) args->character_only.push_back("--refit");  // --refit=false is fine
+        for (const char* name : {"--control-vertices", "--control-fit", "--patch-agreement"}) {
+          if (cmd->count(name) > 0) args->automatic_only.push_back(name);
         }
       });
 }

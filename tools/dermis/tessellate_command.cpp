@@ -39,6 +39,7 @@ struct TessellateArgs {
   // --chart, --blend and --blend-lb as given on the command line (set at parse time): a .dsurf
   // carries its own, so they are refused there rather than ignored.
   std::vector<std::string> domain_options;
+  bool displacement_levels_given = false;  // refused without a .dsurf
 };
 
 bool IsDsurf(const std::string& path) { return LowerExtension(path) == ".dsurf"; }
@@ -119,6 +120,11 @@ int RunTessellate(const TessellateArgs& a) {
                                            "apply to a control mesh (.obj, .ply, --builtin)");
     }
     return RunTessellateDsurf(a, t0);
+  }
+  if (a.displacement_levels_given) {
+    return Usage(kTessellateCommand,
+                 "--displacement-levels applies to a fitted surface (.dsurf); a control mesh "
+                 "has no displacement");
   }
   PolygonMesh mesh;
   Status s;
@@ -209,6 +215,7 @@ void AddTessellateCommand(CLI::App* app, std::function<int()>* run) {
         for (const char* name : {"--chart", "--blend", "--blend-lb"}) {
           if (cmd->count(name) > 0) args->domain_options.push_back(name);
         }
+        args->displacement_levels_given = cmd->count("--displacement-levels") > 0;
       },
       /*stdout_ok=*/true);
 }

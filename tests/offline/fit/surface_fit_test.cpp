@@ -297,7 +297,8 @@ TEST_CASE("fit: FitPoints can solve only beside a boundary") {
 TEST_CASE("fit: PlaceLostPoints gives a lost point its closest surface point") {
   // Points near the built-in grid's saddle (4 x 3 quads, open) and beyond its boundary, marked
   // not converged at a wrong parameter (a far corner of a face sharing a vertex with theirs,
-  // as a projection onto the wrong patch gives): afterwards the
+  // or of their own face at the grid's corners, as a projection onto the wrong patch gives):
+  // afterwards the
   // surface at their parameter is as close to them as a level-64 tessellation of the surface
   // says it can be (an independent exact point-to-triangle distance). Optimised and outside
   // fits are left alone, and the thread count changes nothing.
@@ -330,17 +331,26 @@ TEST_CASE("fit: PlaceLostPoints gives a lost point its closest surface point") {
       fits.push_back(fit);
     }
   }
-  // One optimised and one outside fit, which must not move.
-  PointFit optimised = fits[0], outside = fits[1];
+  // One optimised and one outside fit, a lost one without a face and a lost point that is not
+  // finite: none of them may move.
+  PointFit optimised = fits[0], outside = fits[1], faceless = fits[2], nan_point = fits[3];
   optimised.status = PointFitStatus::kOptimized;
   outside.status = PointFitStatus::kOutside;
+  faceless.face = kInvalidIndex;
   points.push_back(points[0]), fits.push_back(optimised);
   points.push_back(points[1]), fits.push_back(outside);
+  points.push_back(points[2]), fits.push_back(faceless);
+  points.push_back(Vec3(std::nan(""), 0.0, 0.0)), fits.push_back(nan_point);
+  const std::size_t untouched = 4;
 
   std::vector<PointFit> one = fits, two = fits;
   const std::int64_t moved = PlaceLostPoints(domain, patches, nullptr, points, &one, 8, 1);
   CHECK(PlaceLostPoints(domain, patches, nullptr, points, &two, 8, 2) == moved);
-  CHECK(moved == static_cast<std::int64_t>(points.size()) - 2);
+  CHECK(moved == static_cast<std::int64_t>(points.size() - untouched));
+  // Sizes that disagree change nothing.
+  std::vector<PointFit> short_fits(fits.begin(), fits.begin() + 3);
+  CHECK(PlaceLostPoints(domain, patches, nullptr, points, &short_fits, 8, 1) == 0);
+  CHECK(short_fits[0].uv == fits[0].uv);
 
   TessellationPattern pattern;
   REQUIRE(TessellationPattern::Build(topo, 64, &pattern).ok());
@@ -354,7 +364,7 @@ TEST_CASE("fit: PlaceLostPoints gives a lost point its closest surface point") {
     INFO("point " << i);
     CHECK(one[i].face == two[i].face);
     CHECK(one[i].uv == two[i].uv);
-    if (fits[i].status != PointFitStatus::kNotConverged) {
+    if (i >= points.size() - untouched) {
       CHECK(one[i].face == fits[i].face);
       CHECK(one[i].uv == fits[i].uv);
       continue;

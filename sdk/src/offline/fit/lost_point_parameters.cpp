@@ -124,7 +124,9 @@ std::int64_t PlaceLostPoints(const ManifoldDomain& domain, const LocalPatch* pat
   std::vector<std::size_t> lost;
   for (std::size_t i = 0; i < fits->size(); ++i) {
     const PointFit& f = (*fits)[i];
-    if (f.status == PointFitStatus::kNotConverged && f.face >= 0 && f.face < topo.num_faces()) {
+    const Vec3& p = points[i];
+    if (f.status == PointFitStatus::kNotConverged && f.face >= 0 && f.face < topo.num_faces() &&
+        std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) {
       lost.push_back(i);
     }
   }

@@ -31,7 +31,9 @@ enum class PointFitStatus : std::uint8_t {
 /// The parameters and samples of one data point.
 struct PointFit {
   PointFitStatus status = PointFitStatus::kOutside;
-  /// Surface parameter of the point: the optimised one, or the projection's if not converged.
+  /// Surface parameter of the point: the optimised one, or the projection's if not converged
+  /// (FitSurface then replaces a lost point's with its closest surface point's,
+  /// PlaceLostPoints()).
   Index face = kInvalidIndex;
   Vec2 uv{0.0};
   /// The Yoon projection's parameter (on the nearest corner's patch), for the unoptimised fit.
