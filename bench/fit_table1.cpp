@@ -18,6 +18,7 @@
 //                             [--density D] [--control-fit ITERATIONS] [--tangent-weight T]
 //                             [--tangent-damping D] [--patch-agreement W] [--robust-cutoff C]
 //                             [--chart-type characteristic|complex|isodistance] [--finest-passes P]
+//                             [--loop-segments N] (coarse edges per boundary loop, at least)
 //                             [--smoothing S] [--samples S] [--crease-samples C] [--crease-angle A]
 //                             [--max-turn T] [--repeat R] [--where] [--node-weight W]
 //                             [--budget COEFFICIENTS_PER_POINT]
@@ -192,6 +193,7 @@ struct Settings {
   double patch_agreement = -1.0;  // -1: ControlFitOptions' default
   double robust_cutoff = -1.0;    // -1: ControlFitOptions' default (0: no robust weights)
   int chart_type = -1;            // -1: DomainOptions' default; else a ChartType value
+  int loop_segments = -1;         // -1: SizingOptions' default (edges per boundary loop, at least)
   int finest_passes = -1;         // -1: FitOptions' default
   double smoothing = -1.0;        // -1: FitOptions' default
   double samples = -1.0;          // -1: CharacterFitOptions' default
@@ -215,6 +217,7 @@ void ApplySettings(const Settings& st, FitOptions* options) {
   if (st.patch_agreement >= 0.0) options->control_fit.patch_agreement = st.patch_agreement;
   if (st.robust_cutoff >= 0.0) options->control_fit.robust_cutoff = st.robust_cutoff;
   if (st.chart_type >= 0) options->domain.chart_type = static_cast<ChartType>(st.chart_type);
+  if (st.loop_segments >= 0) options->remesh.sizing.loop_segments = st.loop_segments;
   if (st.finest_passes >= 1) options->displacement.finest_passes = st.finest_passes;
   if (st.smoothing >= 0.0) options->displacement.smoothing = st.smoothing;
   if (st.mba) options->displacement.method = DisplacementMethod::kMba;
@@ -778,6 +781,8 @@ int main(int argc, char** argv) {
       st.tangent_damping = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--patch-agreement") == 0 && i + 1 < argc) {
       st.patch_agreement = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--loop-segments") == 0 && i + 1 < argc) {
+      st.loop_segments = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--chart-type") == 0 && i + 1 < argc) {
       const char* t = argv[++i];
       st.chart_type = std::strcmp(t, "complex") == 0       ? 1

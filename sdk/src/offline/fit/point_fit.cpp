@@ -38,6 +38,27 @@ void BuildControlFaceTree(const ManifoldDomain& domain, const std::vector<Vec3>&
 
 // Yoon's projection (paper section 4, "Initial displacements") of point p, then the
 // optimisation of Eq. 5 (docs/notes/fit.md section 4b); fills *out.
+//
+// A solve that converges far from where it started is a spurious root of Q(z) + delta N(z) = p:
+// the normal line of some distant part of the surface through p (measured on the bunny with a
+// control mesh of 600 vertices: delta = 6 times the scan's size, and the displacement levels
+// fitted to it spiked the surface by more than its diagonal). The surface lies within about a
+// control face's size of that face, so a root whose |delta| exceeds the start's by more than
+// the face's longest edge is not taken: the point counts as not converged.
+double LongestEdge(const ManifoldDomain& domain, const std::vector<Vec3>& x, Index face) {
+  double longest = 0.0;
+  for (int a = 0; a < 4; ++a) {
+    const Vec3 e = x[domain.topology().face_vertex(face, a)] -
+                   x[domain.topology().face_vertex(face, (a + 1) & 3)];
+    longest = std::max(longest, glm::length(e));
+  }
+  return longest;
+}
+
+bool Plausible(double delta, double start_delta, double reach) {
+  return std::abs(delta) <= std::abs(start_delta) + reach;
+}
+
 void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std::vector<Vec3>& x,
               const TriangleDistanceTree& tree, const Vec3& p, const PointFitOptions& options,
               PointFit* out) {
@@ -76,9 +97,10 @@ void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std
     // Without a projection there is no parameter to fall back on: solve whenever the partial
     // solve is on.
     if (!options.optimize && !options.optimize_beside_boundary) return;
-    const CommonDisplacementSolution s = SolveCommonDisplacement(
-        domain, patches, p, v, z, SignedDistance(patches[v], z, p), options.tolerance);
-    if (!s.converged) return;
+    const double start = SignedDistance(patches[v], z, p);
+    const CommonDisplacementSolution s =
+        SolveCommonDisplacement(domain, patches, p, v, z, start, options.tolerance);
+    if (!s.converged || !Plausible(s.delta, start, LongestEdge(domain, x, face))) return;
     const int c = DominantCorner(s.uv);
     v0 = domain.topology().face_vertex(s.face, c);
     z0 = domain.FaceToChart(s.face, c, s.uv);
@@ -104,7 +126,7 @@ void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std
   }
   const CommonDisplacementSolution s =
       SolveCommonDisplacement(domain, patches, p, v0, z0, r.delta, options.tolerance);
-  if (!s.converged) return;
+  if (!s.converged || !Plausible(s.delta, r.delta, LongestEdge(domain, x, face1))) return;
   r.status = PointFitStatus::kOptimized;
   r.face = s.face;
   r.uv = s.uv;
