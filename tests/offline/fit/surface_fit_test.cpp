@@ -63,6 +63,18 @@ PolygonMesh Cube(double half) {
   return m;
 }
 
+// The shared Stanford bunny scan as `dermis fit` reads it; false, with a warning, where
+// ../shared/data is absent (the [heavy] cases then skip).
+bool ReadSharedBunny(PolygonMesh* mesh, Index* dropped) {
+  const std::string path = "../shared/data/scans/stanford-bunny.obj";
+  if (!std::ifstream(path)) {
+    WARN("skipped: " << path << " not found (run from the repo root with ../shared/data)");
+    return false;
+  }
+  REQUIRE(ReadFitInput(path, mesh, dropped).ok());
+  return true;
+}
+
 }  // namespace
 
 TEST_CASE("fit: projection converges on an analytic patch") {
@@ -518,14 +530,9 @@ TEST_CASE("fit: a far root of the common-displacement solve is not taken", "[hea
   // distant part of the surface through the point); the displacement levels fitted to it
   // spiked the surface: E1 max 0.154, Hausdorff 126% of the diagonal. Such a root is now
   // refused (point_fit.cpp) and the point counts as not converged.
-  const std::string path = "../shared/data/scans/stanford-bunny.obj";
-  if (!std::ifstream(path)) {
-    WARN("skipped: " << path << " not found (run from the repo root with ../shared/data)");
-    return;
-  }
   PolygonMesh mesh;
   Index dropped = 0;
-  REQUIRE(ReadFitInput(path, &mesh, &dropped).ok());
+  if (!ReadSharedBunny(&mesh, &dropped)) return;
   FitInput input;
   input.points = mesh.positions;
   input.mesh = &mesh;
@@ -547,14 +554,9 @@ TEST_CASE("fit: a far root of the common-displacement solve is not taken", "[hea
 }
 
 TEST_CASE("fit: the Stanford bunny with 540 control vertices", "[heavy]") {
-  const std::string path = "../shared/data/scans/stanford-bunny.obj";
-  if (!std::ifstream(path)) {
-    WARN("skipped: " << path << " not found (run from the repo root with ../shared/data)");
-    return;
-  }
   PolygonMesh mesh;
   Index dropped = 0;
-  REQUIRE(ReadFitInput(path, &mesh, &dropped).ok());
+  if (!ReadSharedBunny(&mesh, &dropped)) return;
   CHECK(dropped == 1113);
   CHECK(mesh.num_vertices() == 34834);
   FitInput input;

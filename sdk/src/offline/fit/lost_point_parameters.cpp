@@ -165,20 +165,11 @@ std::int64_t PlaceLostPoints(const ManifoldDomain& domain, const LocalPatch* pat
     for (std::size_t k = b; k < e; ++k) {
       PointFit& f = (*fits)[lost[k]];
       const Vec3& p = points[lost[k]];
-      double best = std::numeric_limits<double>::infinity();
-      SurfacePoint sp;
-      if (EvaluateSurface(domain, patches, displacement, f.face, f.uv, &sp)) {
-        best = glm::length(sp.position - p);
-      }
+      // Start 1: the fit's own parameter (Gauss-Newton only accepts steps that get closer, so
+      // this is never farther than the parameter itself).
       Index best_face = f.face;
       Vec2 best_uv = f.uv;
-      // Start 1: the fit's own parameter.
-      {
-        Index face = f.face;
-        Vec2 uv = f.uv;
-        const double d = ClosestPointOnSurface(domain, patches, displacement, p, &face, &uv);
-        if (d < best) best = d, best_face = face, best_uv = uv;
-      }
+      double best = ClosestPointOnSurface(domain, patches, displacement, p, &best_face, &best_uv);
       // Start 2: the nearest grid sample around it (the first of equals, in face order).
       double nearest = std::numeric_limits<double>::infinity();
       Index seed_face = kInvalidIndex;
