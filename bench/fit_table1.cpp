@@ -19,6 +19,7 @@
 //                             [--tangent-damping D] [--patch-agreement W] [--robust-cutoff C]
 //                             [--chart-type characteristic|complex|isodistance] [--finest-passes P]
 //                             [--loop-segments N] (coarse edges per boundary loop, at least)
+//                             [--no-cover-boundary] (FitOptions::cover_boundary off)
 //                             [--smoothing S] [--samples S] [--crease-samples C] [--crease-angle A]
 //                             [--max-turn T] [--repeat R] [--where] [--node-weight W]
 //                             [--budget COEFFICIENTS_PER_POINT]
@@ -186,25 +187,26 @@ struct Settings {
   int compare_without_creases = -1;  ///< --compare-without-creases 0|1 (-1: the default).
   int compare_simplified = -1;       ///< --compare-simplified 0|1 (-1: the default).
   ControlMeshMethod method = ControlMeshMethod::kRemesh;
-  double density = -1.0;          // -1: FitOptions' default
-  int control_fit = -1;           // -1: FitOptions' default
-  double tangent_weight = -1.0;   // -1: ControlFitOptions' default
-  double tangent_damping = -1.0;  // -1: ControlFitOptions' default
-  double patch_agreement = -1.0;  // -1: ControlFitOptions' default
-  double robust_cutoff = -1.0;    // -1: ControlFitOptions' default (0: no robust weights)
-  int chart_type = -1;            // -1: DomainOptions' default; else a ChartType value
-  int loop_segments = -1;         // -1: SizingOptions' default (edges per boundary loop, at least)
-  int finest_passes = -1;         // -1: FitOptions' default
-  double smoothing = -1.0;        // -1: FitOptions' default
-  double samples = -1.0;          // -1: CharacterFitOptions' default
-  double crease_samples = -1.0;   // -1: CharacterFitOptions' default
-  int crease_rows = -1;           // -1: CharacterFitOptions' default
-  int displacement_levels = -1;   // characters: displacement levels of the lod surface (-1: all)
-  double crease_angle = -1.0;     // -1: CharacterFitOptions' default
-  double node_weight = -1.0;      // -1: the fit's default
-  double budget = -1.0;           // coefficients per point; -1: the fit's default, 0: none
-  double max_turn = -1.0;         // -1: CharacterFitOptions' default
-  double level_smoothing = -1.0;  // -1: the adaptive fit's default
+  double density = -1.0;           // -1: FitOptions' default
+  int control_fit = -1;            // -1: FitOptions' default
+  double tangent_weight = -1.0;    // -1: ControlFitOptions' default
+  double tangent_damping = -1.0;   // -1: ControlFitOptions' default
+  double patch_agreement = -1.0;   // -1: ControlFitOptions' default
+  bool no_cover_boundary = false;  // FitOptions::cover_boundary off
+  double robust_cutoff = -1.0;     // -1: ControlFitOptions' default (0: no robust weights)
+  int chart_type = -1;             // -1: DomainOptions' default; else a ChartType value
+  int loop_segments = -1;          // -1: SizingOptions' default (edges per boundary loop, at least)
+  int finest_passes = -1;          // -1: FitOptions' default
+  double smoothing = -1.0;         // -1: FitOptions' default
+  double samples = -1.0;           // -1: CharacterFitOptions' default
+  double crease_samples = -1.0;    // -1: CharacterFitOptions' default
+  int crease_rows = -1;            // -1: CharacterFitOptions' default
+  int displacement_levels = -1;    // characters: displacement levels of the lod surface (-1: all)
+  double crease_angle = -1.0;      // -1: CharacterFitOptions' default
+  double node_weight = -1.0;       // -1: the fit's default
+  double budget = -1.0;            // coefficients per point; -1: the fit's default, 0: none
+  double max_turn = -1.0;          // -1: CharacterFitOptions' default
+  double level_smoothing = -1.0;   // -1: the adaptive fit's default
   bool Row(const char* name) const { return rows.find(name) != std::string::npos; }
 };
 
@@ -215,6 +217,7 @@ void ApplySettings(const Settings& st, FitOptions* options) {
   if (st.tangent_weight >= 0.0) options->control_fit.tangent_weight = st.tangent_weight;
   if (st.tangent_damping >= 0.0) options->control_fit.tangent_damping = st.tangent_damping;
   if (st.patch_agreement >= 0.0) options->control_fit.patch_agreement = st.patch_agreement;
+  if (st.no_cover_boundary) options->cover_boundary = false;
   if (st.robust_cutoff >= 0.0) options->control_fit.robust_cutoff = st.robust_cutoff;
   if (st.chart_type >= 0) options->domain.chart_type = static_cast<ChartType>(st.chart_type);
   if (st.loop_segments >= 0) options->remesh.sizing.loop_segments = st.loop_segments;
@@ -423,6 +426,11 @@ int RunBunny(const Settings& st) {
                 report.displacement_fit.stopped_by.c_str());
   }
   PrintControlMesh("bunny", report);
+  std::printf(
+      "boundary cover (bunny): %lld scan boundary vertices beyond the domain surface's boundary "
+      "curve (farthest %.3g), %lld boundary control vertices moved out\n",
+      static_cast<long long>(report.boundary_points_beyond), report.boundary_largest_excess,
+      static_cast<long long>(report.boundary_vertices_moved));
   // The control mesh build alone in CPU seconds (it runs on one thread, so this is its wall
   // time on an idle core; the wall times above grow with the machine's load).
   std::vector<double> cpu;
@@ -781,6 +789,8 @@ int main(int argc, char** argv) {
       st.tangent_damping = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--patch-agreement") == 0 && i + 1 < argc) {
       st.patch_agreement = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--no-cover-boundary") == 0) {
+      st.no_cover_boundary = true;
     } else if (std::strcmp(argv[i], "--loop-segments") == 0 && i + 1 < argc) {
       st.loop_segments = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--chart-type") == 0 && i + 1 < argc) {

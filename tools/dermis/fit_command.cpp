@@ -166,6 +166,9 @@ Json ReportJson(const FitArgs& a, const FitOptions& options, const FitReport& r)
   j["control_vertices"] = r.control_vertices;
   j["control_faces"] = r.control_faces;
   j["control_fit_rounds"] = r.control_fit_rounds;
+  j["boundary_points_beyond"] = r.boundary_points_beyond;
+  j["boundary_largest_excess"] = r.boundary_largest_excess;
+  j["boundary_vertices_moved"] = r.boundary_vertices_moved;
   j["control_mesh"] = ControlMeshJson(r.control_mesh);
   j["coefficients"] = r.coefficients;
   j["coefficients_per_point"] = r.coefficients_per_point;

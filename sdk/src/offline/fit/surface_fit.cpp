@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "dermis/core/parallel.h"
+#include "dermis/offline/fit/boundary_cover.h"
 #include "dermis/offline/fit/control_fit.h"
 #include "dermis/offline/fit/lost_point_parameters.h"
 #include "dermis/offline/fit/point_fit.h"
@@ -189,6 +190,22 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
       domain.FitPatches(x.data(), fitted.surface.patches.data());
       ++rep.control_fit_rounds;
       progress("control-vertex fit", w_control_mesh + rep.control_fit_rounds * w_round);
+    }
+    // A displacement along the normal cannot extend the surface: the data's boundary vertices
+    // beyond the boundary curve would stay as far from the surface as from the curve.
+    if (options.cover_boundary && rep.control_fit_rounds > 0 && domain.topology().has_boundary()) {
+      BoundaryCoverOptions bc;
+      bc.threads = rep.threads;
+      bc.tolerance = 1e-6 * rep.scale;
+      const BoundaryCoverReport cover =
+          CoverDataBoundary(domain, BoundaryEdges(*input.mesh), bc, &x);
+      rep.boundary_points_beyond = cover.data_vertices_beyond;
+      rep.boundary_largest_excess = cover.largest_excess / rep.scale;
+      rep.boundary_vertices_moved = cover.vertices_moved;
+      if (cover.vertices_moved > 0) {
+        fitted.surface.control.positions = x;
+        domain.FitPatches(x.data(), fitted.surface.patches.data());
+      }
     }
     // A built control mesh is all quads, so its vertices are the quad mesh's.
     fitted.control_mesh.positions = fitted.surface.control.positions;

@@ -41,6 +41,11 @@ struct FitOptions {
   int control_fit_iterations = 2;
   double control_fit_min_points_per_vertex = 16.0;
   ControlFitOptions control_fit;
+  /// After the control-vertex fit's rounds (so only where they ran): move the boundary control
+  /// vertices out along the surface until the domain surface's boundary curve covers the data
+  /// mesh's boundary vertices (boundary_cover.h; docs/fitting.md, "Covering the data's
+  /// boundary"). Nothing changes for data without a boundary.
+  bool cover_boundary = true;
   /// Levels of the displacement functions (max_levels is --levels; threads is ignored).
   DisplacementFitOptions displacement;
   /// Fraction of the points held out of the fit and used only to measure (E2), in [0, 1).
@@ -102,7 +107,13 @@ struct FitReport {
   std::int64_t control_vertices = 0, control_faces = 0;
   /// How the control mesh was built and its quality (method "given" for a given one).
   ControlMeshInfo control_mesh;
-  std::int64_t control_fit_rounds = 0;   ///< Control-vertex fit rounds done (FitOptions).
+  std::int64_t control_fit_rounds = 0;  ///< Control-vertex fit rounds done (FitOptions).
+  /// FitOptions::cover_boundary: the data mesh's boundary vertices found beyond the domain
+  /// surface's boundary curve, the farthest of them (in the unit of FitErrors), and the boundary
+  /// control vertices moved out to cover them.
+  std::int64_t boundary_points_beyond = 0;
+  double boundary_largest_excess = 0.0;
+  std::int64_t boundary_vertices_moved = 0;
   std::int64_t coefficients = 0;         ///< Stored displacement coefficients, all levels.
   double coefficients_per_point = 0.0;   ///< coefficients / points.
   std::int64_t finest_coefficients = 0;  ///< Those of each chart's finest level only.

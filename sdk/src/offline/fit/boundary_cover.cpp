@@ -1,0 +1,230 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// The domain surface's boundary curve (Yoon Eq. 4 with d = 0 on the control mesh's boundary
+// edges) pushed out to cover the data's boundary vertices (docs/fitting.md, "Covering the
+// data's boundary"). The closest point of the curve comes from a TriangleDistanceTree over the
+// curve sampled 16 times per edge (degenerate triangles (a, b, b), one per segment), refined by
+// golden sections on the surface itself.
+#include "dermis/offline/fit/boundary_cover.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "dermis/core/parallel.h"
+#include "dermis/offline/geometry/polygon_mesh.h"
+#include "dermis/offline/geometry/triangle_distance.h"
+#include "dermis/surface/local_patch.h"
+#include "dermis/surface/manifold_domain.h"
+#include "dermis/surface/surface_evaluator.h"
+
+namespace dermis {
+namespace {
+
+// Samples per boundary edge of the curve the data boundary vertices search first.
+constexpr int kSearchSamples = 16;
+
+// Face coordinates of parameter t in [0, 1] along edge e of a quad (corners (0,0), (1,0),
+// (1,1), (0,1); edge e runs from corner e to corner e + 1, as half-edge face_offset + e).
+Vec2 EdgePoint(int e, double t) {
+  switch (e) {
+    case 0:
+      return Vec2(t, 0.0);
+    case 1:
+      return Vec2(1.0, t);
+    case 2:
+      return Vec2(1.0 - t, 1.0);
+    default:
+      return Vec2(0.0, 1.0 - t);
+  }
+}
+
+bool Finite(const Vec3& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+// The domain surface at parameter t of boundary half-edge h; false if it cannot be evaluated.
+bool CurvePoint(const ManifoldDomain& domain, const LocalPatch* patches, Index h, double t,
+                SurfacePoint* out) {
+  const MeshTopology& topo = domain.topology();
+  const Index f = topo.halfedge_face(h);
+  return EvaluateSurface(domain, patches, nullptr, f,
+                         EdgePoint(static_cast<int>(h - topo.face_offset(f)), t), out) &&
+         Finite(out->position);
+}
+
+}  // namespace
+
+std::vector<std::pair<Vec3, Vec3>> BoundaryEdges(const PolygonMesh& mesh) {
+  const Index nv = mesh.num_vertices();
+  std::vector<std::array<Index, 2>> directed;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const Index b = mesh.face_offsets[static_cast<std::size_t>(f)], n = mesh.face_size(f);
+    for (Index k = 0; k < n; ++k) {
+      const Index a = mesh.face_vertices[static_cast<std::size_t>(b + k)];
+      const Index c = mesh.face_vertices[static_cast<std::size_t>(b + (k + 1) % n)];
+      if (a < 0 || a >= nv || c < 0 || c >= nv || a == c) continue;
+      directed.push_back({a, c});
+    }
+  }
+  std::vector<std::array<Index, 2>> sorted = directed;
+  std::sort(sorted.begin(), sorted.end());
+  auto count = [&](Index a, Index c) {
+    const std::array<Index, 2> key{a, c};
+    const auto r = std::equal_range(sorted.begin(), sorted.end(), key);
+    return r.second - r.first;
+  };
+  std::vector<std::pair<Vec3, Vec3>> out;
+  for (const auto& e : directed) {
+    if (count(e[0], e[1]) != 1 || count(e[1], e[0]) != 0) continue;
+    out.emplace_back(mesh.positions[static_cast<std::size_t>(e[0])],
+                     mesh.positions[static_cast<std::size_t>(e[1])]);
+  }
+  return out;
+}
+
+BoundaryCoverReport CoverDataBoundary(const ManifoldDomain& domain,
+                                      const std::vector<std::pair<Vec3, Vec3>>& edges,
+                                      const BoundaryCoverOptions& options,
+                                      std::vector<Vec3>* positions) {
+  BoundaryCoverReport report;
+  const MeshTopology& topo = domain.topology();
+  const Index nv = domain.num_vertices();
+  if (static_cast<Index>(positions->size()) != nv || edges.empty()) return report;
+  // The boundary half-edges (of quads: the surface is evaluated on quads only), and each
+  // boundary vertex's outgoing and incoming one.
+  std::vector<Index> boundary;
+  std::vector<Index> outgoing(static_cast<std::size_t>(nv), kInvalidIndex);
+  std::vector<Index> incoming(static_cast<std::size_t>(nv), kInvalidIndex);
+  for (Index h = 0; h < topo.num_halfedges(); ++h) {
+    if (topo.twin(h) != kInvalidIndex || topo.face_size(topo.halfedge_face(h)) != 4) continue;
+    boundary.push_back(h);
+    outgoing[static_cast<std::size_t>(topo.halfedge_origin(h))] = h;
+    incoming[static_cast<std::size_t>(topo.halfedge_dest(h))] = h;
+  }
+  if (boundary.empty()) return report;
+  const int threads = ResolveThreadCount(options.threads);
+  std::vector<LocalPatch> patches(static_cast<std::size_t>(nv));
+  domain.FitPatches(positions->data(), patches.data());
+  // The curve, sampled; each edge's chord.
+  constexpr int ks = kSearchSamples;
+  const std::size_t nb = boundary.size();
+  std::vector<Vec3> curve(nb * (ks + 1));
+  std::vector<char> curve_ok(curve.size(), 0);
+  ParallelFor(threads, nb, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      for (int k = 0; k <= ks; ++k) {
+        SurfacePoint sp;
+        const std::size_t s = i * (ks + 1) + static_cast<std::size_t>(k);
+        curve_ok[s] =
+            CurvePoint(domain, patches.data(), boundary[i], static_cast<double>(k) / ks, &sp);
+        curve[s] = sp.position;
+      }
+    }
+  });
+  std::vector<double> reach(nb, 0.0);
+  std::vector<Vec3> seg_positions;
+  std::vector<std::uint32_t> seg_triangles;
+  std::vector<std::size_t> seg_code;  // segment -> boundary edge i and sample k: i ks + k
+  for (std::size_t i = 0; i < nb; ++i) {
+    const std::size_t s = i * (ks + 1);
+    if (curve_ok[s] && curve_ok[s + ks]) {
+      reach[i] = options.max_distance_edges * glm::length(curve[s + ks] - curve[s]);
+    }
+    for (int k = 0; k < ks; ++k) {
+      const std::size_t a = s + static_cast<std::size_t>(k);
+      if (!curve_ok[a] || !curve_ok[a + 1]) continue;
+      const std::uint32_t first = static_cast<std::uint32_t>(seg_positions.size());
+      seg_positions.push_back(curve[a]);
+      seg_positions.push_back(curve[a + 1]);
+      seg_triangles.insert(seg_triangles.end(), {first, first + 1, first + 1});
+      seg_code.push_back(i * ks + static_cast<std::size_t>(k));
+    }
+  }
+  TriangleDistanceTree tree;
+  if (seg_code.empty() || !tree.Build(seg_positions, seg_triangles)) return report;
+  // Each data boundary vertex: its excess beyond the curve, and where on the curve.
+  const std::size_t nd = edges.size();
+  std::vector<double> excess(nd, 0.0), at(nd, 0.0);
+  std::vector<std::size_t> edge_of(nd, 0);
+  ParallelFor(threads, nd, [&](std::size_t b, std::size_t e) {
+    for (std::size_t j = b; j < e; ++j) {
+      const Vec3& p = edges[j].first;
+      if (!Finite(p)) continue;
+      const ClosestPoint c = tree.Query(p);
+      if (c.triangle == kInvalidIndex) continue;
+      const std::size_t code = seg_code[static_cast<std::size_t>(c.triangle)];
+      const std::size_t i = code / ks;
+      const int k = static_cast<int>(code % ks);
+      if (!(c.distance <= reach[i])) continue;
+      const Index h = boundary[i];
+      auto dist = [&](double t) {
+        SurfacePoint sp;
+        return CurvePoint(domain, patches.data(), h, t, &sp)
+                   ? glm::length(sp.position - p)
+                   : std::numeric_limits<double>::infinity();
+      };
+      // Golden sections over the closest segment and its two neighbours.
+      double lo = std::max(0.0, (k - 1.0) / ks), hi = std::min(1.0, (k + 2.0) / ks);
+      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+      double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+      double f1 = dist(x1), f2 = dist(x2);
+      for (int it = 0; it < 30; ++it) {
+        if (f1 < f2) {
+          hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = dist(x1);
+        } else {
+          lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = dist(x2);
+        }
+      }
+      const double t = f1 < f2 ? x1 : x2;
+      SurfacePoint sp, ahead, behind;
+      const double step = 1e-4;
+      if (!CurvePoint(domain, patches.data(), h, t, &sp) ||
+          !CurvePoint(domain, patches.data(), h, std::min(1.0, t + step), &ahead) ||
+          !CurvePoint(domain, patches.data(), h, std::max(0.0, t - step), &behind)) {
+        continue;
+      }
+      // The face lies to the left of its half-edge (counter-clockwise about the normal), so
+      // outward along the surface is (curve direction) x normal.
+      Vec3 out = glm::cross(ahead.position - behind.position, sp.normal);
+      const double len2 = glm::dot(out, out);
+      if (!(len2 > 0.0) || !std::isfinite(len2)) continue;
+      excess[j] = glm::dot(p - sp.position, out) / std::sqrt(len2);
+      at[j] = t;
+      edge_of[j] = i;
+    }
+  });
+  // Each boundary vertex is asked for the largest share of an excess beside it.
+  std::vector<double> push(static_cast<std::size_t>(nv), 0.0);
+  for (std::size_t j = 0; j < nd; ++j) {
+    if (!(excess[j] > options.tolerance)) continue;
+    ++report.data_vertices_beyond;
+    report.largest_excess = std::max(report.largest_excess, excess[j]);
+    const Index h = boundary[edge_of[j]];
+    const std::size_t a = static_cast<std::size_t>(topo.halfedge_origin(h));
+    const std::size_t b = static_cast<std::size_t>(topo.halfedge_dest(h));
+    push[a] = std::max(push[a], excess[j] * std::min(1.0, 2.0 * (1.0 - at[j])));
+    push[b] = std::max(push[b], excess[j] * std::min(1.0, 2.0 * at[j]));
+  }
+  std::vector<Vec3> moved = *positions;
+  for (Index v = 0; v < nv; ++v) {
+    const std::size_t sv = static_cast<std::size_t>(v);
+    if (!(push[sv] > 0.0) || outgoing[sv] == kInvalidIndex || incoming[sv] == kInvalidIndex) {
+      continue;
+    }
+    const Vec3& next = (*positions)[static_cast<std::size_t>(topo.halfedge_dest(outgoing[sv]))];
+    const Vec3& prev = (*positions)[static_cast<std::size_t>(topo.halfedge_origin(incoming[sv]))];
+    const Vec3& x = (*positions)[sv];
+    Vec3 out = glm::cross(next - prev, patches[sv].fallback_normal);
+    const double len2 = glm::dot(out, out);
+    if (!(len2 > 0.0) || !std::isfinite(len2)) continue;
+    const double cap =
+        options.max_move_edges * 0.5 * (glm::length(next - x) + glm::length(x - prev));
+    moved[sv] = x + (std::min(push[sv], cap) / std::sqrt(len2)) * out;
+    ++report.vertices_moved;
+  }
+  *positions = std::move(moved);
+  return report;
+}
+
+}  // namespace dermis
