@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "dermis/core/parallel.h"
@@ -57,28 +58,36 @@ bool CurvePoint(const ManifoldDomain& domain, const LocalPatch* patches, Index h
 
 std::vector<std::pair<Vec3, Vec3>> BoundaryEdges(const PolygonMesh& mesh) {
   const Index nv = mesh.num_vertices();
+  // Directed edges in face order, and their undirected keys sorted: an edge is a boundary edge
+  // when its undirected key occurs once (it appears once, its reverse never).
   std::vector<std::array<Index, 2>> directed;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     const Index b = mesh.face_offsets[static_cast<std::size_t>(f)], n = mesh.face_size(f);
     for (Index k = 0; k < n; ++k) {
       const Index a = mesh.face_vertices[static_cast<std::size_t>(b + k)];
       const Index c = mesh.face_vertices[static_cast<std::size_t>(b + (k + 1) % n)];
       if (a < 0 || a >= nv || c < 0 || c >= nv || a == c) continue;
+      const std::uint64_t lo = static_cast<std::uint64_t>(std::min(a, c));
+      const std::uint64_t hi = static_cast<std::uint64_t>(std::max(a, c));
+      keys.emplace_back((lo << 32) | hi, static_cast<std::uint32_t>(directed.size()));
       directed.push_back({a, c});
     }
   }
-  std::vector<std::array<Index, 2>> sorted = directed;
-  std::sort(sorted.begin(), sorted.end());
-  auto count = [&](Index a, Index c) {
-    const std::array<Index, 2> key{a, c};
-    const auto r = std::equal_range(sorted.begin(), sorted.end(), key);
-    return r.second - r.first;
-  };
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::uint32_t> once;
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j].first == keys[i].first) ++j;
+    if (j == i + 1) once.push_back(keys[i].second);
+    i = j;
+  }
+  std::sort(once.begin(), once.end());
   std::vector<std::pair<Vec3, Vec3>> out;
-  for (const auto& e : directed) {
-    if (count(e[0], e[1]) != 1 || count(e[1], e[0]) != 0) continue;
-    out.emplace_back(mesh.positions[static_cast<std::size_t>(e[0])],
-                     mesh.positions[static_cast<std::size_t>(e[1])]);
+  out.reserve(once.size());
+  for (std::uint32_t e : once) {
+    out.emplace_back(mesh.positions[static_cast<std::size_t>(directed[e][0])],
+                     mesh.positions[static_cast<std::size_t>(directed[e][1])]);
   }
   return out;
 }
