@@ -11,6 +11,7 @@
 
 #include "dermis/dsurf/dsurf.h"
 #include "dermis/offline/build/control_mesh.h"
+#include "dermis/offline/fit/boundary_cover.h"
 #include "dermis/offline/fit/lost_point_parameters.h"
 #include "dermis/offline/fit/point_fit.h"
 #include "dermis/offline/fit/surface_projection.h"
@@ -610,4 +611,20 @@ TEST_CASE("fit: the Stanford bunny with 540 control vertices", "[heavy]") {
   }
   INFO("level-32 tessellation: mean " << sum / static_cast<double>(n));
   CHECK(sum / static_cast<double>(n) <= report.error.mean);
+  // The boundary cover (docs/fitting.md, "Covering the data's boundary"): the scan's hole rims
+  // ran up to 1.48e-2 beyond the domain surface's boundary curve, and with them E1's largest
+  // (6.99e-3 without the cover, the goal 5e-3). Independently: every boundary vertex of
+  // the scan, held-out ones too, lies within 6e-3 of the level-32 tessellation (5.2e-3 measured,
+  // at a held-out rim vertex; 1.48e-2 without the cover).
+  CHECK(report.boundary_points_beyond > 0);
+  CHECK(report.boundary_vertices_moved > 0);
+  CHECK(report.boundary_largest_excess > 5e-3);
+  CHECK(report.error.max <= 5e-3);
+  const std::vector<std::pair<Vec3, Vec3>> rim = BoundaryEdges(mesh);
+  CHECK(rim.size() > 100);
+  double rim_max = 0.0;
+  for (const auto& e : rim)
+    rim_max = std::max(rim_max, tree.Query(e.first).distance / report.scale);
+  INFO("scan boundary vertices to the level-32 tessellation: max " << rim_max);
+  CHECK(rim_max <= 6e-3);
 }
