@@ -193,7 +193,8 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     }
     // A displacement along the normal cannot extend the surface: the data's boundary vertices
     // beyond the boundary curve would stay as far from the surface as from the curve.
-    if (options.cover_boundary && rep.control_fit_rounds > 0 && domain.topology().has_boundary()) {
+    if (options.cover_boundary && input.mesh && rep.control_fit_rounds > 0 &&
+        domain.topology().has_boundary()) {
       BoundaryCoverOptions bc;
       bc.threads = rep.threads;
       bc.tolerance = 1e-6 * rep.scale;
