@@ -4,6 +4,7 @@
 // boundary"), on a flat grid whose boundary curve is known exactly.
 #include "dermis/offline/fit/boundary_cover.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
@@ -17,8 +18,9 @@ using namespace dermis;
 
 namespace {
 
-// An n x n grid of unit quads in the plane z = 0 over [0, n]^2, counter-clockwise about +z.
-PolygonMesh FlatGrid(int n) {
+// An n x n grid of unit quads in the plane z = 0 over [0, n]^2, counter-clockwise about +z
+// (about -z when `flipped`).
+PolygonMesh FlatGrid(int n, bool flipped = false) {
   PolygonMesh m;
   m.source_name = "flat grid";
   for (int j = 0; j <= n; ++j) {
@@ -27,7 +29,11 @@ PolygonMesh FlatGrid(int n) {
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
       const Index a = j * (n + 1) + i;
-      m.AddFace({a, a + 1, a + n + 2, a + n + 1});
+      if (flipped) {
+        m.AddFace({a, a + n + 1, a + n + 2, a + 1});
+      } else {
+        m.AddFace({a, a + 1, a + n + 2, a + n + 1});
+      }
     }
   }
   return m;
@@ -158,4 +164,51 @@ TEST_CASE("boundary cover: the boundary curve moves out to the data's boundary")
   REQUIRE(BuildControlSurface(cube, DomainOptions(), &closed).ok());
   std::vector<Vec3> cx = closed.control.positions;
   CHECK(CoverDataBoundary(*closed.domain, data, BoundaryCoverOptions(), &cx).vertices_moved == 0);
+}
+
+TEST_CASE("boundary cover: a data vertex beyond the curve moves the two ends of its edge") {
+  // The data's boundary is the square's sides but for two points: (1.25, -d) beyond the side
+  // y = 0, a quarter along the boundary edge from vertex (1, 0) to (2, 0), and (2.75, 4 + d)
+  // beyond the side y = 4, a quarter along the edge from (3, 4) to (2, 4) (the boundary runs
+  // right to left there). A point at t asks the edge's first end for min(1, 2 (1 - t)) of its
+  // excess and the second for min(1, 2 t): (1, 0) and (3, 4) move out by d, (2, 0) and (2, 4)
+  // by d / 2, nothing else moves. The same on the grid with the other orientation (normal -z).
+  const int n = 4;
+  const double d = 0.125;
+  for (bool flipped : {false, true}) {
+    INFO((flipped ? "normal -z" : "normal +z"));
+    ControlSurface surface;
+    REQUIRE(BuildControlSurface(FlatGrid(n, flipped), DomainOptions(), &surface).ok());
+    std::vector<std::pair<Vec3, Vec3>> data = Square(0.0, n, 32);
+    // Side y = 0 is ring[0 .. 31] (x = k / 8), side y = 4 is ring[64 .. 95] (x = 4 - k / 8).
+    std::vector<Vec3> ring;
+    for (const auto& e : data) ring.push_back(e.first);
+    ring[10] = Vec3(1.25, -d, 0.0);
+    ring[64 + 10] = Vec3(2.75, n + d, 0.0);
+    if (flipped) std::reverse(ring.begin(), ring.end());
+    data.clear();
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      data.emplace_back(ring[i], ring[(i + 1) % ring.size()]);
+    }
+    std::vector<Vec3> x = surface.control.positions;
+    BoundaryCoverOptions options;
+    options.tolerance = 1e-9;
+    const BoundaryCoverReport r = CoverDataBoundary(*surface.domain, data, options, &x);
+    CHECK(r.data_vertices_beyond == 2);
+    CHECK(r.largest_excess == Approx(d).epsilon(1e-9));
+    CHECK(r.vertices_moved == 4);
+    auto at = [&](int i, int j) { return x[static_cast<std::size_t>(j * (n + 1) + i)]; };
+    CHECK(at(1, 0).y == Approx(-d).margin(1e-8));
+    CHECK(at(2, 0).y == Approx(-0.5 * d).margin(1e-8));
+    CHECK(at(3, n).y == Approx(n + d).margin(1e-8));
+    CHECK(at(2, n).y == Approx(n + 0.5 * d).margin(1e-8));
+    std::size_t moved = 0;
+    for (std::size_t v = 0; v < x.size(); ++v) {
+      if (x[v] == surface.control.positions[v]) continue;
+      ++moved;
+      CHECK(x[v].x == surface.control.positions[v].x);  // straight out, across the side
+      CHECK(x[v].z == Approx(0.0).margin(1e-12));
+    }
+    CHECK(moved == 4);
+  }
 }

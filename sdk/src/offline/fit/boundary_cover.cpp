@@ -56,7 +56,8 @@ bool CurvePoint(const ManifoldDomain& domain, const LocalPatch* patches, Index h
 
 }  // namespace
 
-std::vector<std::pair<Vec3, Vec3>> BoundaryEdges(const PolygonMesh& mesh) {
+std::vector<std::pair<Vec3, Vec3>> BoundaryEdges(const PolygonMesh& mesh,
+                                                 std::vector<Index>* first) {
   const Index nv = mesh.num_vertices();
   // Directed edges in face order, and their undirected keys sorted: an edge is a boundary edge
   // when its undirected key occurs once (it appears once, its reverse never).
@@ -85,7 +86,9 @@ std::vector<std::pair<Vec3, Vec3>> BoundaryEdges(const PolygonMesh& mesh) {
   std::sort(once.begin(), once.end());
   std::vector<std::pair<Vec3, Vec3>> out;
   out.reserve(once.size());
+  if (first) first->clear();
   for (std::uint32_t e : once) {
+    if (first) first->push_back(directed[e][0]);
     out.emplace_back(mesh.positions[static_cast<std::size_t>(directed[e][0])],
                      mesh.positions[static_cast<std::size_t>(directed[e][1])]);
   }
@@ -100,13 +103,13 @@ BoundaryCoverReport CoverDataBoundary(const ManifoldDomain& domain,
   const MeshTopology& topo = domain.topology();
   const Index nv = domain.num_vertices();
   if (static_cast<Index>(positions->size()) != nv || edges.empty()) return report;
-  // The boundary half-edges (of quads: the surface is evaluated on quads only), and each
-  // boundary vertex's outgoing and incoming one.
+  // The boundary half-edges (the domain is all quads), and each boundary vertex's outgoing and
+  // incoming one.
   std::vector<Index> boundary;
   std::vector<Index> outgoing(static_cast<std::size_t>(nv), kInvalidIndex);
   std::vector<Index> incoming(static_cast<std::size_t>(nv), kInvalidIndex);
   for (Index h = 0; h < topo.num_halfedges(); ++h) {
-    if (topo.twin(h) != kInvalidIndex || topo.face_size(topo.halfedge_face(h)) != 4) continue;
+    if (topo.twin(h) != kInvalidIndex) continue;
     boundary.push_back(h);
     outgoing[static_cast<std::size_t>(topo.halfedge_origin(h))] = h;
     incoming[static_cast<std::size_t>(topo.halfedge_dest(h))] = h;
@@ -229,6 +232,7 @@ BoundaryCoverReport CoverDataBoundary(const ManifoldDomain& domain,
     if (!(len2 > 0.0) || !std::isfinite(len2)) continue;
     const double cap =
         options.max_move_edges * 0.5 * (glm::length(next - x) + glm::length(x - prev));
+    if (!std::isfinite(cap)) continue;
     moved[sv] = x + (std::min(push[sv], cap) / std::sqrt(len2)) * out;
     ++report.vertices_moved;
   }

@@ -198,8 +198,18 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
       BoundaryCoverOptions bc;
       bc.threads = rep.threads;
       bc.tolerance = 1e-6 * rep.scale;
-      const BoundaryCoverReport cover =
-          CoverDataBoundary(domain, BoundaryEdges(*input.mesh), bc, &x);
+      // The held-out points' boundary vertices stay out of the fit (the mesh's vertices are
+      // the points, in order).
+      std::vector<Index> first;
+      std::vector<std::pair<Vec3, Vec3>> edges = BoundaryEdges(*input.mesh, &first), kept;
+      const bool same_order = input.mesh->positions.size() == input.points.size();
+      for (std::size_t e = 0; e < edges.size(); ++e) {
+        const auto i = static_cast<std::size_t>(first[e]);
+        if (!same_order || !IsHeldOut(i, options.holdout, options.holdout_seed)) {
+          kept.push_back(edges[e]);
+        }
+      }
+      const BoundaryCoverReport cover = CoverDataBoundary(domain, kept, bc, &x);
       rep.boundary_points_beyond = cover.data_vertices_beyond;
       rep.boundary_largest_excess = cover.largest_excess / rep.scale;
       rep.boundary_vertices_moved = cover.vertices_moved;

@@ -1,10 +1,10 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
-/// \brief Moves the boundary control vertices out along the surface so that the domain
-/// surface's boundary curve covers the data's boundary (a scan's hole rims): a displacement
-/// along the normal cannot extend a surface, so a data point beyond the boundary curve stays as
-/// far from the surface as it is from the curve (docs/fitting.md, "Covering the data's
-/// boundary").
+/// \brief Moves the boundary control vertices out along the surface, one pass, towards a
+/// domain surface whose boundary curve covers the data's boundary (a scan's hole rims): a
+/// displacement along the normal cannot extend a surface, so a data point beyond the boundary
+/// curve stays as far from the surface as it is from the curve (docs/fitting.md, "Covering the
+/// data's boundary").
 #pragma once
 
 #include <cstdint>
@@ -20,8 +20,10 @@ struct PolygonMesh;
 
 /// The boundary edges of a polygon mesh: every directed edge (a, b) of a face that no other face
 /// repeats and whose reverse (b, a) no face has, as position pairs in face order. Empty for a
-/// closed mesh. Edges with an out-of-range index or equal ends are skipped.
-std::vector<std::pair<Vec3, Vec3>> BoundaryEdges(const PolygonMesh& mesh);
+/// closed mesh. Edges with an out-of-range index or equal ends are skipped. If `first` is not
+/// null it receives each edge's first vertex index a (same order).
+std::vector<std::pair<Vec3, Vec3>> BoundaryEdges(const PolygonMesh& mesh,
+                                                 std::vector<Index>* first = nullptr);
 
 /// Options of CoverDataBoundary().
 struct BoundaryCoverOptions {
@@ -36,11 +38,13 @@ struct BoundaryCoverOptions {
   int threads = 0;  ///< 0: hardware concurrency. Results do not depend on it.
 };
 
-/// What CoverDataBoundary() did.
+/// What CoverDataBoundary() did. The excesses are measured before the move.
 struct BoundaryCoverReport {
-  std::int64_t data_vertices_beyond = 0;  ///< Data boundary vertices beyond the curve.
-  double largest_excess = 0.0;            ///< Farthest of them beyond the curve (model units).
-  std::int64_t vertices_moved = 0;        ///< Boundary control vertices moved.
+  /// Data boundary edges whose first end lies beyond the curve (a vertex where the data's
+  /// boundary touches itself counts once per edge leaving it).
+  std::int64_t data_vertices_beyond = 0;
+  double largest_excess = 0.0;      ///< Farthest of them beyond the curve (model units).
+  std::int64_t vertices_moved = 0;  ///< Boundary control vertices moved.
 };
 
 /// One pass over the data boundary `edges` (BoundaryEdges(); each edge's first end is a data
@@ -52,7 +56,11 @@ struct BoundaryCoverReport {
 /// min(1, 2 (1 - t)) and b by its excess times min(1, 2 t); each boundary control vertex moves
 /// by the largest it is asked (at most max_move_edges of its boundary edges' mean length),
 /// along the surface, across the boundary: normalize((next - previous boundary vertex) x its
-/// patch's normal). `positions` is updated in place. Deterministic whatever the thread count.
+/// patch's normal). One pass: moving a vertex refits its neighbours' patches as well, so the
+/// moved curve covers the data only about as far as the old one missed it (docs/fitting.md has
+/// the measurements); at a convex corner of the boundary the corner vertex moves along the
+/// bisector, by the excess measured across one of its edges, so a corner is covered less.
+/// `positions` is updated in place. Deterministic whatever the thread count.
 /// Does nothing where the domain has no boundary, `edges` is empty or sizes disagree.
 BoundaryCoverReport CoverDataBoundary(const ManifoldDomain& domain,
                                       const std::vector<std::pair<Vec3, Vec3>>& edges,

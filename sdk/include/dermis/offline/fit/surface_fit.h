@@ -42,9 +42,10 @@ struct FitOptions {
   double control_fit_min_points_per_vertex = 16.0;
   ControlFitOptions control_fit;
   /// After the control-vertex fit's rounds (so only where they ran): move the boundary control
-  /// vertices out along the surface until the domain surface's boundary curve covers the data
-  /// mesh's boundary vertices (boundary_cover.h; docs/fitting.md, "Covering the data's
-  /// boundary"). Nothing changes for data without a boundary.
+  /// vertices out along the surface, one pass, towards a domain surface whose boundary curve
+  /// covers the data mesh's boundary vertices that are not held out (boundary_cover.h;
+  /// docs/fitting.md, "Covering the data's boundary"). Nothing changes for data without a
+  /// boundary.
   bool cover_boundary = true;
   /// Levels of the displacement functions (max_levels is --levels; threads is ignored).
   DisplacementFitOptions displacement;
@@ -108,9 +109,9 @@ struct FitReport {
   /// How the control mesh was built and its quality (method "given" for a given one).
   ControlMeshInfo control_mesh;
   std::int64_t control_fit_rounds = 0;  ///< Control-vertex fit rounds done (FitOptions).
-  /// FitOptions::cover_boundary: the data mesh's boundary vertices found beyond the domain
-  /// surface's boundary curve, the farthest of them (in the unit of FitErrors), and the boundary
-  /// control vertices moved out to cover them.
+  /// FitOptions::cover_boundary: the data mesh's boundary vertices (not held out) found beyond
+  /// the domain surface's boundary curve before the move, the farthest of them (in the unit of
+  /// FitErrors), and the boundary control vertices moved out.
   std::int64_t boundary_points_beyond = 0;
   double boundary_largest_excess = 0.0;
   std::int64_t boundary_vertices_moved = 0;
