@@ -15,6 +15,7 @@
 #include "dermis/core/parallel.h"
 #include "dermis/offline/geometry/polygon_mesh.h"
 #include "dermis/offline/geometry/triangle_distance.h"
+#include "dermis/surface/chart.h"
 #include "dermis/surface/local_patch.h"
 #include "dermis/surface/manifold_domain.h"
 #include "dermis/surface/surface_evaluator.h"
@@ -25,32 +26,20 @@ namespace {
 // Samples per boundary edge of the curve the data boundary vertices search first.
 constexpr int kSearchSamples = 16;
 
-// Face coordinates of parameter t in [0, 1] along edge e of a quad (corners (0,0), (1,0),
-// (1,1), (0,1); edge e runs from corner e to corner e + 1, as half-edge face_offset + e).
-Vec2 EdgePoint(int e, double t) {
-  switch (e) {
-    case 0:
-      return Vec2(t, 0.0);
-    case 1:
-      return Vec2(1.0, t);
-    case 2:
-      return Vec2(1.0 - t, 1.0);
-    default:
-      return Vec2(0.0, 1.0 - t);
-  }
-}
-
 bool Finite(const Vec3& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
 
 // The domain surface at parameter t of boundary half-edge h; false if it cannot be evaluated.
+// The half-edge runs from corner e of its face to corner e + 1 (e = h - face offset), which is
+// corner e's first axis: face point CornerToFace(e, (t, 0)).
 bool CurvePoint(const ManifoldDomain& domain, const LocalPatch* patches, Index h, double t,
                 SurfacePoint* out) {
   const MeshTopology& topo = domain.topology();
   const Index f = topo.halfedge_face(h);
   return EvaluateSurface(domain, patches, nullptr, f,
-                         EdgePoint(static_cast<int>(h - topo.face_offset(f)), t), out) &&
+                         CornerToFace(static_cast<int>(h - topo.face_offset(f)), Vec2(t, 0.0)),
+                         out) &&
          Finite(out->position);
 }
 

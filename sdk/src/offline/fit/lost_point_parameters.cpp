@@ -14,6 +14,7 @@
 
 #include "dermis/core/parallel.h"
 #include "dermis/offline/fit/surface_projection.h"
+#include "dermis/surface/chart.h"
 #include "dermis/surface/manifold_domain.h"
 #include "dermis/surface/surface_evaluator.h"
 
@@ -39,21 +40,6 @@ std::vector<Index> FaceNeighbourhood(const MeshTopology& topo, Index face) {
   return faces;
 }
 
-// Face coordinates of parameter t in [0, 1] along edge e of a quad (corners (0,0), (1,0), (1,1),
-// (0,1); edge e runs from corner e to corner e + 1).
-Vec2 EdgePoint(int e, double t) {
-  switch (e) {
-    case 0:
-      return Vec2(t, 0.0);
-    case 1:
-      return Vec2(1.0, t);
-    case 2:
-      return Vec2(1.0 - t, 1.0);
-    default:
-      return Vec2(0.0, 1.0 - t);
-  }
-}
-
 // The boundary edge of `face` nearest to uv if uv lies within `reach` of it (face coordinates),
 // or -1. Gauss-Newton halves a step that would leave the surface, so it approaches a boundary
 // edge without landing on it.
@@ -73,6 +59,7 @@ int BoundaryEdgeNear(const MeshTopology& topo, Index face, Vec2 uv, double reach
 // part along the boundary with it. Where the search ended beside a boundary edge, the closest
 // point along every boundary edge of `faces` is searched in one dimension: 8 samples per edge,
 // then golden sections around the best. Updates the parameter and the distance if closer.
+// Edge e of a face runs from corner e to corner e + 1: face point CornerToFace(e, (t, 0)).
 void SlideAlongBoundary(const ManifoldDomain& domain, const LocalPatch* patches,
                         const Displacement* displacement, const Vec3& p,
                         const std::vector<Index>& faces, Index* face, Vec2* uv, double* best) {
@@ -80,7 +67,7 @@ void SlideAlongBoundary(const ManifoldDomain& domain, const LocalPatch* patches,
   if (BoundaryEdgeNear(topo, *face, *uv, 0.05) < 0) return;
   auto distance = [&](Index f, int e, double t) {
     SurfacePoint sp;
-    if (!EvaluateSurface(domain, patches, displacement, f, EdgePoint(e, t), &sp)) {
+    if (!EvaluateSurface(domain, patches, displacement, f, CornerToFace(e, Vec2(t, 0.0)), &sp)) {
       return std::numeric_limits<double>::infinity();
     }
     return glm::length(sp.position - p);
@@ -109,7 +96,7 @@ void SlideAlongBoundary(const ManifoldDomain& domain, const LocalPatch* patches,
       }
       if (f1 < bd) bd = f1, bt = x1;
       if (f2 < bd) bd = f2, bt = x2;
-      if (bd < *best) *best = bd, *face = f, *uv = EdgePoint(e, bt);
+      if (bd < *best) *best = bd, *face = f, *uv = CornerToFace(e, Vec2(bt, 0.0));
     }
   }
 }
