@@ -18,6 +18,7 @@
 #include "dermis/offline/geometry/builtin_meshes.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/offline/io/point_input.h"
+#include "dermis/surface/chart.h"
 #include "dermis/surface/surface_evaluator.h"
 #include "dermis/surface/tessellation.h"
 #include "test_meshes.h"
@@ -397,6 +398,55 @@ TEST_CASE("fit: PlaceLostPoints gives a lost point its closest surface point") {
   // Points well past the boundary, whose closest point is on it (where Gauss-Newton alone
   // stopped up to 9e-4 short).
   CHECK(beyond >= 6);
+}
+
+TEST_CASE("fit: ClosestPointOnSurface reaches a closest point on the boundary") {
+  // Points beyond the built-in grid's boundary (4 x 3 quads, open), started at the parameter
+  // below them on their own face: the distance returned agrees with a level-64 tessellation's
+  // exact one (its chords lie within about 3e-5 of the surface), and the parameter written is
+  // where the surface is that far. Gauss-Newton alone halves the steps that leave the surface
+  // and stopped short by up to 9e-4 on these.
+  PolygonMesh grid;
+  REQUIRE(MakeBuiltinMesh("grid", &grid).ok());
+  ControlSurface surface;
+  REQUIRE(BuildControlSurface(grid, DomainOptions(), &surface).ok());
+  const ManifoldDomain& domain = *surface.domain;
+  const LocalPatch* patches = surface.patches.data();
+  const MeshTopology& topo = domain.topology();
+  TessellationPattern pattern;
+  REQUIRE(TessellationPattern::Build(topo, 64, &pattern).ok());
+  std::vector<Vec3> xs(pattern.samples.size());
+  REQUIRE(EvaluateSamples(domain, patches, nullptr, pattern.samples.data(), xs.size(), xs.data(),
+                          nullptr));
+  TriangleDistanceTree tree;
+  REQUIRE(tree.Build(xs, pattern.triangles));
+  int tested = 0;
+  for (Index f = 0; f < domain.num_faces(); ++f) {
+    for (int e = 0; e < 4; ++e) {
+      if (topo.twin(topo.face_offset(f) + e) != kInvalidIndex) continue;
+      for (double t : {0.2, 0.5, 0.85}) {
+        // Outward along the surface across the edge, and off it along the normal.
+        const Vec2 uv = CornerToFace(e, Vec2(t, 0.0));
+        SurfacePoint sp, ahead;
+        REQUIRE(EvaluateSurface(domain, patches, nullptr, f, uv, &sp));
+        REQUIRE(EvaluateSurface(domain, patches, nullptr, f, CornerToFace(e, Vec2(t + 1e-4, 0.0)),
+                                &ahead));
+        const Vec3 out = glm::normalize(glm::cross(ahead.position - sp.position, sp.normal));
+        const Vec3 p = sp.position + 0.3 * out + 0.05 * sp.normal;
+        Index face = f;
+        Vec2 start = CornerToFace(e, Vec2(t, 0.3));
+        const double d = ClosestPointOnSurface(domain, patches, nullptr, p, &face, &start);
+        const double reference = tree.Query(p).distance;
+        INFO("face " << f << " edge " << e << " t " << t);
+        CHECK(std::abs(d - reference) <= 1e-4);
+        SurfacePoint at;
+        REQUIRE(EvaluateSurface(domain, patches, nullptr, face, start, &at));
+        CHECK(glm::length(at.position - p) == Approx(d).margin(1e-12));
+        ++tested;
+      }
+    }
+  }
+  CHECK(tested >= 30);
 }
 
 TEST_CASE("fit: a control-mesh target equal to the full split keeps every triangle") {

@@ -14,7 +14,6 @@
 
 #include "dermis/core/parallel.h"
 #include "dermis/offline/fit/surface_projection.h"
-#include "dermis/surface/chart.h"
 #include "dermis/surface/manifold_domain.h"
 #include "dermis/surface/surface_evaluator.h"
 
@@ -38,67 +37,6 @@ std::vector<Index> FaceNeighbourhood(const MeshTopology& topo, Index face) {
     faces = std::move(next);
   }
   return faces;
-}
-
-// The boundary edge of `face` nearest to uv if uv lies within `reach` of it (face coordinates),
-// or -1. Gauss-Newton halves a step that would leave the surface, so it approaches a boundary
-// edge without landing on it.
-int BoundaryEdgeNear(const MeshTopology& topo, Index face, Vec2 uv, double reach) {
-  const double d[4] = {uv.y, 1.0 - uv.x, 1.0 - uv.y, uv.x};
-  int best = -1;
-  for (int e = 0; e < 4; ++e) {
-    if (d[e] <= reach && topo.twin(topo.face_offset(face) + e) == kInvalidIndex &&
-        (best < 0 || d[e] < d[best])) {
-      best = e;
-    }
-  }
-  return best;
-}
-
-// Gauss-Newton stops short on a boundary: a step that leaves the surface is halved, and its
-// part along the boundary with it. Where the search ended beside a boundary edge, the closest
-// point along every boundary edge of `faces` is searched in one dimension: 8 samples per edge,
-// then golden sections around the best. Updates the parameter and the distance if closer.
-// Edge e of a face runs from corner e to corner e + 1: face point CornerToFace(e, (t, 0)).
-void SlideAlongBoundary(const ManifoldDomain& domain, const LocalPatch* patches,
-                        const Displacement* displacement, const Vec3& p,
-                        const std::vector<Index>& faces, Index* face, Vec2* uv, double* best) {
-  const MeshTopology& topo = domain.topology();
-  if (BoundaryEdgeNear(topo, *face, *uv, 0.05) < 0) return;
-  auto distance = [&](Index f, int e, double t) {
-    SurfacePoint sp;
-    if (!EvaluateSurface(domain, patches, displacement, f, CornerToFace(e, Vec2(t, 0.0)), &sp)) {
-      return std::numeric_limits<double>::infinity();
-    }
-    return glm::length(sp.position - p);
-  };
-  for (Index f : faces) {
-    for (int e = 0; e < 4; ++e) {
-      const Index h = topo.face_offset(f) + e;
-      if (topo.twin(h) != kInvalidIndex) continue;
-      constexpr int kSamples = 8;
-      double bt = 0.0, bd = std::numeric_limits<double>::infinity();
-      for (int i = 0; i <= kSamples; ++i) {
-        const double t = static_cast<double>(i) / kSamples;
-        const double dist = distance(f, e, t);
-        if (dist < bd) bd = dist, bt = t;
-      }
-      double lo = std::max(0.0, bt - 1.0 / kSamples), hi = std::min(1.0, bt + 1.0 / kSamples);
-      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-      double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-      double f1 = distance(f, e, x1), f2 = distance(f, e, x2);
-      for (int it = 0; it < 30; ++it) {
-        if (f1 < f2) {
-          hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = distance(f, e, x1);
-        } else {
-          lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = distance(f, e, x2);
-        }
-      }
-      if (f1 < bd) bd = f1, bt = x1;
-      if (f2 < bd) bd = f2, bt = x2;
-      if (bd < *best) *best = bd, *face = f, *uv = CornerToFace(e, Vec2(bt, 0.0));
-    }
-  }
 }
 
 }  // namespace
@@ -181,7 +119,8 @@ std::int64_t PlaceLostPoints(const ManifoldDomain& domain, const LocalPatch* pat
             ClosestPointOnSurface(domain, patches, displacement, p, &seed_face, &seed_uv);
         if (d < best) best = d, best_face = seed_face, best_uv = seed_uv;
       }
-      SlideAlongBoundary(domain, patches, displacement, p, around[k], &best_face, &best_uv, &best);
+      ClosestPointAlongBoundary(domain, patches, displacement, p, around[k], &best_face, &best_uv,
+                                &best);
       if (best_face != f.face || best_uv != f.uv) {
         f.face = best_face;
         f.uv = best_uv;

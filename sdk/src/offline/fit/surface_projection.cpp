@@ -4,9 +4,11 @@
 // (docs/notes/fit.md sections 4b and 5).
 #include "dermis/offline/fit/surface_projection.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/mat3x3.hpp>
 #include <limits>
+#include <vector>
 
 #include "dermis/surface/blend.h"
 #include "dermis/surface/chart.h"
@@ -217,6 +219,68 @@ CommonDisplacementSolution SolveCommonDisplacement(const ManifoldDomain& domain,
 
 namespace dermis {
 
+namespace {
+
+// The boundary edge of `face` nearest to uv if uv lies within `reach` of it (face coordinates),
+// or -1. Gauss-Newton halves a step that would leave the surface, so it approaches a boundary
+// edge without landing on it.
+int BoundaryEdgeNear(const MeshTopology& topo, Index face, Vec2 uv, double reach) {
+  const double d[4] = {uv.y, 1.0 - uv.x, 1.0 - uv.y, uv.x};
+  int best = -1;
+  for (int e = 0; e < 4; ++e) {
+    if (d[e] <= reach && topo.twin(topo.face_offset(face) + e) == kInvalidIndex &&
+        (best < 0 || d[e] < d[best])) {
+      best = e;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+// Edge e of a face runs from corner e to corner e + 1: face point CornerToFace(e, (t, 0)).
+void ClosestPointAlongBoundary(const ManifoldDomain& domain, const LocalPatch* patches,
+                               const Displacement* displacement, const Vec3& p,
+                               const std::vector<Index>& faces, Index* face, Vec2* uv,
+                               double* best) {
+  const MeshTopology& topo = domain.topology();
+  if (BoundaryEdgeNear(topo, *face, *uv, 0.05) < 0) return;
+  auto distance = [&](Index f, int e, double t) {
+    SurfacePoint sp;
+    if (!EvaluateSurface(domain, patches, displacement, f, CornerToFace(e, Vec2(t, 0.0)), &sp)) {
+      return std::numeric_limits<double>::infinity();
+    }
+    return glm::length(sp.position - p);
+  };
+  for (Index f : faces) {
+    for (int e = 0; e < 4; ++e) {
+      const Index h = topo.face_offset(f) + e;
+      if (topo.twin(h) != kInvalidIndex) continue;
+      constexpr int kSamples = 8;
+      double bt = 0.0, bd = std::numeric_limits<double>::infinity();
+      for (int i = 0; i <= kSamples; ++i) {
+        const double t = static_cast<double>(i) / kSamples;
+        const double dist = distance(f, e, t);
+        if (dist < bd) bd = dist, bt = t;
+      }
+      double lo = std::max(0.0, bt - 1.0 / kSamples), hi = std::min(1.0, bt + 1.0 / kSamples);
+      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+      double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+      double f1 = distance(f, e, x1), f2 = distance(f, e, x2);
+      for (int it = 0; it < 30; ++it) {
+        if (f1 < f2) {
+          hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = distance(f, e, x1);
+        } else {
+          lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = distance(f, e, x2);
+        }
+      }
+      if (f1 < bd) bd = f1, bt = x1;
+      if (f2 < bd) bd = f2, bt = x2;
+      if (bd < *best) *best = bd, *face = f, *uv = CornerToFace(e, Vec2(bt, 0.0));
+    }
+  }
+}
+
 double ClosestPointOnSurface(const ManifoldDomain& domain, const LocalPatch* patches,
                              const Displacement* displacement, const Vec3& p, Index* face, Vec2* uv,
                              int max_iterations) {
@@ -252,7 +316,22 @@ double ClosestPointOnSurface(const ManifoldDomain& domain, const LocalPatch* pat
     }
     if (!accepted || alpha * alpha * glm::dot(step, step) < 1e-28 * (axx + ayy)) break;
   }
-  return std::sqrt(energy);
+  double distance = std::sqrt(energy);
+  // Beside a boundary edge the steps above stop short of a closest point on the boundary (each
+  // one that leaves the surface is halved, its part along the boundary with it): search along
+  // the boundary edges of the faces around this one.
+  if (BoundaryEdgeNear(domain.topology(), *face, *uv, 0.05) >= 0) {
+    const MeshTopology& topo = domain.topology();
+    std::vector<Index> faces;
+    for (int a = 0; a < 4; ++a) {
+      const Index v = topo.face_vertex(*face, a);
+      for (int i = 0; i < topo.valence(v); ++i) faces.push_back(topo.ring(v, i).face);
+    }
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    ClosestPointAlongBoundary(domain, patches, displacement, p, faces, face, uv, &distance);
+  }
+  return distance;
 }
 
 }  // namespace dermis

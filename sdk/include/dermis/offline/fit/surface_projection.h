@@ -4,6 +4,8 @@
 /// (paper section 4, "Initial displacements" and Eq. 5; docs/notes/fit.md sections 4b and 5).
 #pragma once
 
+#include <vector>
+
 #include "dermis/core/types.h"
 #include "dermis/surface/local_patch.h"
 #include "dermis/surface/manifold_domain.h"
@@ -65,10 +67,22 @@ class Displacement;
 /// Closest point of the displaced surface to p, by Gauss-Newton on |D(z) - p|^2 in the chart
 /// of the dominant corner, starting at (face, uv) and moving across faces as needed. Gives a
 /// local minimum: an upper bound on the true distance that is exact when the start is in the
-/// right basin (the fitted parameter of a point is). Returns the distance (model units) and
-/// writes the final parameter.
+/// right basin (the fitted parameter of a point is). Where it ends within 0.05 (face
+/// coordinates) of a boundary edge, ClosestPointAlongBoundary() over the faces around the final
+/// face follows: a step that would leave the surface is halved, so Gauss-Newton alone stops
+/// short of a closest point on the boundary. Returns the distance (model units) and writes the
+/// final parameter.
 double ClosestPointOnSurface(const ManifoldDomain& domain, const LocalPatch* patches,
                              const Displacement* displacement, const Vec3& p, Index* face, Vec2* uv,
                              int max_iterations = 20);
+
+/// If (face, uv) lies within 0.05 (face coordinates) of a boundary edge of its face: the closest
+/// point to p along every boundary edge of `faces` (8 samples per edge, then golden sections
+/// around the best) replaces (face, uv) and *distance (model units) where it is closer than
+/// *distance. Nothing happens elsewhere.
+void ClosestPointAlongBoundary(const ManifoldDomain& domain, const LocalPatch* patches,
+                               const Displacement* displacement, const Vec3& p,
+                               const std::vector<Index>& faces, Index* face, Vec2* uv,
+                               double* distance);
 
 }  // namespace dermis
