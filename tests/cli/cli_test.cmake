@@ -81,7 +81,8 @@ expect_run(0 "wrote" ${DERMIS} fit ${WORK}/dense_torus.obj -o ${WORK}/fit/torus.
            --control-vertices 150 --threads 2 --report ${WORK}/fit/report.json)
 file(READ ${WORK}/fit/report.json report)
 foreach(key points points_dropped control_vertices control_faces coefficients mean rms max
-        points_not_converged points_not_converged_placed
+        points_not_converged points_not_converged_placed boundary_points_beyond
+        boundary_largest_excess boundary_vertices_moved no-cover-boundary
         unoptimized_mean holdout_mean holdout_max hausdorff_percent_diagonal control_mesh
         projection_optimization displacement total)
   string(FIND "${report}" "\"${key}\"" at)
@@ -158,6 +159,9 @@ expect_run(1 "missing\\.obj" ${DERMIS} fit ${WORK}/missing.obj -o ${WORK}/bad_re
 expect_run(2 "--control-vertices and --control-fit apply to the automatic control mesh" ${DERMIS}
            fit ${WORK}/dense_torus.obj -o ${WORK}/bad_refit.dsurf --control-mesh ${WORK}/quad.obj
            --control-vertices 50 --control-fit 1)
+expect_run(2 "--no-cover-boundary applies to the automatic control mesh" ${DERMIS} fit
+           ${WORK}/dense_torus.obj -o ${WORK}/bad_refit.dsurf --control-mesh ${WORK}/quad.obj
+           --no-cover-boundary)
 # On a character (the refusal comes before the file is read, so a missing one will do).
 expect_run(2 "--control-vertices and --holdout apply to a surface.*x\\.gltf is read as a character"
            ${DERMIS} fit ${WORK}/x.gltf -o ${WORK}/bad_refit.dsurf --control-vertices 50

@@ -40,6 +40,7 @@ struct FitArgs {
   double smoothing = -1.0;
   int control_fit = -1;  // -1: the library's default for the input kind
   double patch_agreement = ControlFitOptions{}.patch_agreement;
+  bool no_cover_boundary = !FitOptions{}.cover_boundary;
   std::string method;  // empty: the library's default for the input kind
   double node_weight = -1.0;
   double level_smoothing = -1.0;
@@ -133,6 +134,7 @@ Json EffectiveOptionsJson(const FitArgs& a, const FitOptions& f) {
   if (!a.control_mesh.empty()) o["control-mesh"] = a.control_mesh;
   o["control-fit"] = f.control_fit_iterations;
   o["patch-agreement"] = f.control_fit.patch_agreement;
+  o["no-cover-boundary"] = !f.cover_boundary;
   o["holdout"] = f.holdout;
   const DisplacementFitOptions& d = f.displacement;
   o["displacement"] = d.method == DisplacementMethod::kMba ? "mba" : "adaptive";
@@ -285,6 +287,7 @@ int RunFitCharacter(const FitArgs& a) {
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit.patch_agreement = a.patch_agreement;
+  options.fit.cover_boundary = !a.no_cover_boundary;
   options.fit.threads = a.threads;
   ProgressBar progress(kFitCommand, a.quiet);
   options.progress = progress.Callback();
@@ -375,6 +378,7 @@ int RunFit(const FitArgs& a) {
   ApplyDisplacementArgs(a, &options.displacement);
   if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
   options.control_fit.patch_agreement = a.patch_agreement;
+  options.cover_boundary = !a.no_cover_boundary;
   options.holdout = a.holdout;
   options.threads = a.threads;
   ProgressBar progress(kFitCommand, a.quiet);
@@ -529,6 +533,10 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "farther; docs/fitting.md)")
       ->check(CLI::Range(0.0, 1e3))
       ->capture_default_str();
+  cmd->add_flag("--no-cover-boundary", args->no_cover_boundary,
+                "Leave the built control mesh's boundary where the control-vertex fit puts it "
+                "(default: move its boundary vertices out so that the surface covers the data's "
+                "boundary, docs/fitting.md)");
   cmd->add_option("--holdout", args->holdout,
                   "Surfaces: fraction of points held out to measure error (a character fits "
                   "every vertex)")
@@ -561,6 +569,8 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         for (const char* name : {"--control-vertices", "--control-fit", "--patch-agreement"}) {
           if (cmd->count(name) > 0) args->automatic_only.push_back(name);
         }
+        // --no-cover-boundary=false asks for nothing.
+        if (args->no_cover_boundary) args->automatic_only.push_back("--no-cover-boundary");
       });
 }
 
