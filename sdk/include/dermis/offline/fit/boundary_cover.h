@@ -56,10 +56,10 @@ struct BoundaryCoverReport {
 /// min(1, 2 (1 - t)) and b by its excess times min(1, 2 t); each boundary control vertex moves
 /// by the largest it is asked (at most max_move_edges of its boundary edges' mean length),
 /// along the surface, across the boundary: normalize((next - previous boundary vertex) x its
-/// patch's normal). One pass: moving a vertex refits its neighbours' patches as well, so the
-/// moved curve covers the data only about as far as the old one missed it (docs/fitting.md has
-/// the measurements); at a convex corner of the boundary the corner vertex moves along the
-/// bisector, by the excess measured across one of its edges, so a corner is covered less.
+/// patch's normal). One pass: moving a vertex refits its neighbours' patches as well, so some
+/// data vertices may still lie beyond the moved curve (docs/fitting.md has the measurements);
+/// at a convex corner of the boundary the corner vertex moves along the bisector, by the excess
+/// measured across one of its edges, so a corner is covered less.
 /// `positions` is updated in place. Deterministic whatever the thread count.
 /// Does nothing where the domain has no boundary, `edges` is empty or sizes disagree.
 BoundaryCoverReport CoverDataBoundary(const ManifoldDomain& domain,
