@@ -77,6 +77,21 @@ bool ReadSharedBunny(PolygonMesh* mesh, Index* dropped) {
   return true;
 }
 
+// The built-in grid's surface (4 x 3 quads, open) and, as an independent reference for
+// point-to-surface distances, its level-64 tessellation in a distance tree (exact
+// point-to-triangle distances; the chords lie within about 3e-5 of the surface).
+void GridAndReference(ControlSurface* surface, TriangleDistanceTree* reference) {
+  PolygonMesh grid;
+  REQUIRE(MakeBuiltinMesh("grid", &grid).ok());
+  REQUIRE(BuildControlSurface(grid, DomainOptions(), surface).ok());
+  TessellationPattern pattern;
+  REQUIRE(TessellationPattern::Build(surface->domain->topology(), 64, &pattern).ok());
+  std::vector<Vec3> xs(pattern.samples.size());
+  REQUIRE(EvaluateSamples(*surface->domain, surface->patches.data(), nullptr,
+                          pattern.samples.data(), xs.size(), xs.data(), nullptr));
+  REQUIRE(reference->Build(xs, pattern.triangles));
+}
+
 }  // namespace
 
 TEST_CASE("fit: projection converges on an analytic patch") {
@@ -316,10 +331,9 @@ TEST_CASE("fit: PlaceLostPoints gives a lost point its closest surface point") {
   // surface at their parameter is as close to them as a level-64 tessellation of the surface
   // says it can be (an independent exact point-to-triangle distance). Optimised and outside
   // fits are left alone, and the thread count changes nothing.
-  PolygonMesh grid;
-  REQUIRE(MakeBuiltinMesh("grid", &grid).ok());
   ControlSurface surface;
-  REQUIRE(BuildControlSurface(grid, DomainOptions(), &surface).ok());
+  TriangleDistanceTree tree;
+  GridAndReference(&surface, &tree);
   const ManifoldDomain& domain = *surface.domain;
   const LocalPatch* patches = surface.patches.data();
   const MeshTopology& topo = domain.topology();
@@ -366,13 +380,6 @@ TEST_CASE("fit: PlaceLostPoints gives a lost point its closest surface point") {
   CHECK(PlaceLostPoints(domain, patches, nullptr, points, &short_fits, 8, 1) == 0);
   CHECK(short_fits[0].uv == fits[0].uv);
 
-  TessellationPattern pattern;
-  REQUIRE(TessellationPattern::Build(topo, 64, &pattern).ok());
-  std::vector<Vec3> xs(pattern.samples.size());
-  REQUIRE(EvaluateSamples(domain, patches, nullptr, pattern.samples.data(), xs.size(), xs.data(),
-                          nullptr));
-  TriangleDistanceTree tree;
-  REQUIRE(tree.Build(xs, pattern.triangles));
   int beyond = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     INFO("point " << i);
@@ -406,20 +413,12 @@ TEST_CASE("fit: ClosestPointOnSurface reaches a closest point on the boundary") 
   // exact one (its chords lie within about 3e-5 of the surface), and the parameter written is
   // where the surface is that far. Gauss-Newton alone halves the steps that leave the surface
   // and stopped short by up to 9e-4 on these.
-  PolygonMesh grid;
-  REQUIRE(MakeBuiltinMesh("grid", &grid).ok());
   ControlSurface surface;
-  REQUIRE(BuildControlSurface(grid, DomainOptions(), &surface).ok());
+  TriangleDistanceTree tree;
+  GridAndReference(&surface, &tree);
   const ManifoldDomain& domain = *surface.domain;
   const LocalPatch* patches = surface.patches.data();
   const MeshTopology& topo = domain.topology();
-  TessellationPattern pattern;
-  REQUIRE(TessellationPattern::Build(topo, 64, &pattern).ok());
-  std::vector<Vec3> xs(pattern.samples.size());
-  REQUIRE(EvaluateSamples(domain, patches, nullptr, pattern.samples.data(), xs.size(), xs.data(),
-                          nullptr));
-  TriangleDistanceTree tree;
-  REQUIRE(tree.Build(xs, pattern.triangles));
   int tested = 0;
   for (Index f = 0; f < domain.num_faces(); ++f) {
     for (int e = 0; e < 4; ++e) {
