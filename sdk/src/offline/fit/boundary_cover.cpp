@@ -10,9 +10,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 #include "dermis/core/parallel.h"
+#include "dermis/offline/fit/surface_projection.h"
 #include "dermis/offline/geometry/polygon_mesh.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/surface/chart.h"
@@ -159,25 +159,10 @@ BoundaryCoverReport CoverDataBoundary(const ManifoldDomain& domain,
       const int k = static_cast<int>(code % ks);
       if (!(c.distance <= reach[i])) continue;
       const Index h = boundary[i];
-      auto dist = [&](double t) {
-        SurfacePoint sp;
-        return CurvePoint(domain, patches.data(), h, t, &sp)
-                   ? glm::length(sp.position - p)
-                   : std::numeric_limits<double>::infinity();
-      };
       // Golden sections over the closest segment and its two neighbours.
-      double lo = std::max(0.0, (k - 1.0) / ks), hi = std::min(1.0, (k + 2.0) / ks);
-      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-      double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-      double f1 = dist(x1), f2 = dist(x2);
-      for (int it = 0; it < 30; ++it) {
-        if (f1 < f2) {
-          hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = dist(x1);
-        } else {
-          lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = dist(x2);
-        }
-      }
-      const double t = f1 < f2 ? x1 : x2;
+      double t = 0.0;
+      ClosestPointOnBoundaryEdge(domain, patches.data(), nullptr, p, h,
+                                 std::max(0.0, (k - 1.0) / ks), std::min(1.0, (k + 2.0) / ks), &t);
       SurfacePoint sp, ahead, behind;
       const double step = 1e-4;
       if (!CurvePoint(domain, patches.data(), h, t, &sp) ||

@@ -238,7 +238,35 @@ int BoundaryEdgeNear(const MeshTopology& topo, Index face, Vec2 uv, double reach
 
 }  // namespace
 
-// Edge e of a face runs from corner e to corner e + 1: face point CornerToFace(e, (t, 0)).
+// Half-edge h = face offset + e runs from corner e of its face to corner e + 1: face point
+// CornerToFace(e, (t, 0)).
+double ClosestPointOnBoundaryEdge(const ManifoldDomain& domain, const LocalPatch* patches,
+                                  const Displacement* displacement, const Vec3& p, Index h,
+                                  double lo, double hi, double* t) {
+  const MeshTopology& topo = domain.topology();
+  const Index f = topo.halfedge_face(h);
+  const int e = static_cast<int>(h - topo.face_offset(f));
+  auto distance = [&](double s) {
+    SurfacePoint sp;
+    if (!EvaluateSurface(domain, patches, displacement, f, CornerToFace(e, Vec2(s, 0.0)), &sp)) {
+      return std::numeric_limits<double>::infinity();
+    }
+    return glm::length(sp.position - p);
+  };
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+  double f1 = distance(x1), f2 = distance(x2);
+  for (int it = 0; it < 30; ++it) {
+    if (f1 < f2) {
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = distance(x1);
+    } else {
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = distance(x2);
+    }
+  }
+  *t = f2 < f1 ? x2 : x1;
+  return std::min(f1, f2);
+}
+
 void ClosestPointAlongBoundary(const ManifoldDomain& domain, const LocalPatch* patches,
                                const Displacement* displacement, const Vec3& p,
                                const std::vector<Index>& faces, Index* face, Vec2* uv,
@@ -263,19 +291,11 @@ void ClosestPointAlongBoundary(const ManifoldDomain& domain, const LocalPatch* p
         const double dist = distance(f, e, t);
         if (dist < bd) bd = dist, bt = t;
       }
-      double lo = std::max(0.0, bt - 1.0 / kSamples), hi = std::min(1.0, bt + 1.0 / kSamples);
-      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-      double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-      double f1 = distance(f, e, x1), f2 = distance(f, e, x2);
-      for (int it = 0; it < 30; ++it) {
-        if (f1 < f2) {
-          hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = distance(f, e, x1);
-        } else {
-          lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = distance(f, e, x2);
-        }
-      }
-      if (f1 < bd) bd = f1, bt = x1;
-      if (f2 < bd) bd = f2, bt = x2;
+      double t = bt;
+      const double d = ClosestPointOnBoundaryEdge(domain, patches, displacement, p, h,
+                                                  std::max(0.0, bt - 1.0 / kSamples),
+                                                  std::min(1.0, bt + 1.0 / kSamples), &t);
+      if (d < bd) bd = d, bt = t;
       if (bd < *best) *best = bd, *face = f, *uv = CornerToFace(e, Vec2(bt, 0.0));
     }
   }

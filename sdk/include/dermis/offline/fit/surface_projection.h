@@ -76,6 +76,15 @@ double ClosestPointOnSurface(const ManifoldDomain& domain, const LocalPatch* pat
                              const Displacement* displacement, const Vec3& p, Index* face, Vec2* uv,
                              int max_iterations = 20);
 
+/// The closest point to p of the displaced surface along boundary half-edge h (a half-edge with
+/// no twin; the surface at parameter t in [0, 1] from its origin to its destination), searched
+/// by golden sections on [lo, hi] (30 steps, 0 <= lo < hi <= 1; the distance must be unimodal
+/// there). Writes t and returns the distance (model units; +inf where the surface cannot be
+/// evaluated).
+double ClosestPointOnBoundaryEdge(const ManifoldDomain& domain, const LocalPatch* patches,
+                                  const Displacement* displacement, const Vec3& p, Index h,
+                                  double lo, double hi, double* t);
+
 /// If (face, uv) lies within 0.05 (face coordinates) of a boundary edge of its face: the closest
 /// point to p along every boundary edge of `faces` (8 samples per edge, then golden sections
 /// around the best) replaces (face, uv) and *distance (model units) where it is closer than
