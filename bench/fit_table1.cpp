@@ -9,7 +9,9 @@
 //    both directions;
 //  - characters: RiggedSimple, RiggedFigure, Fox and CesiumMan fitted as `dermis fit` does,
 //    posed at rest in `lod` mode at level 8 (as `dermis animate --clip rest --mode lod --level
-//    8`) and compared with the source posed at rest, two-sided Hausdorff in % of the diagonal.
+//    8`) and compared with the source posed at rest, two-sided Hausdorff in % of the diagonal;
+//    the lod normals against the source's shading normals; and the integral of |H| over the
+//    lod surface against the source's (ripples and lumps raise it; docs/characters.md).
 // Usage (from the repo root): bench_fit [OBJ|PLY] [--rows bunny,torus,characters]
 //                             [--rows characters:NAME,NAME] (only those characters)
 //                             [--crease-rows 0|1] [--displacement-levels L] (characters' lod)
@@ -23,6 +25,8 @@
 //                             [--smoothing S] [--samples S] [--crease-samples C] [--crease-angle A]
 //                             [--max-turn T] [--repeat R] [--where] [--node-weight W]
 //                             [--budget COEFFICIENTS_PER_POINT]
+//                             [--level-smoothing S] (every fit's levels, characters' parts too)
+//                             [--crease-smoothing S] (characters' parts on a crease-kept mesh)
 //                             [--detail] [--mba]
 // --density, --finest-passes and --smoothing set the paper's per-chart MBA (--mba); the default
 // displacement fit is the adaptive one (docs/fitting.md, "Adaptive displacement levels").
@@ -207,6 +211,7 @@ struct Settings {
   double budget = -1.0;            // coefficients per point; -1: the fit's default, 0: none
   double max_turn = -1.0;          // -1: CharacterFitOptions' default
   double level_smoothing = -1.0;   // -1: the adaptive fit's default
+  double crease_smoothing = -1.0;  // -1: CharacterFitOptions' default
   bool Row(const char* name) const { return rows.find(name) != std::string::npos; }
 };
 
@@ -555,13 +560,87 @@ int RunTorus(const Settings& st) {
 
 struct Triangles {
   std::vector<Vec3> positions;
+  std::vector<Vec3> normals;  // unit, one per position (shading normals), or empty
   std::vector<std::uint32_t> indices;
-  void Append(const std::vector<Vec3>& x, const std::vector<std::uint32_t>& tris) {
+  void Append(const std::vector<Vec3>& x, const std::vector<std::uint32_t>& tris,
+              const std::vector<Vec3>& n = {}) {
     const std::uint32_t base = static_cast<std::uint32_t>(positions.size());
     positions.insert(positions.end(), x.begin(), x.end());
+    if (n.size() == x.size()) normals.insert(normals.end(), n.begin(), n.end());
     for (std::uint32_t i : tris) indices.push_back(base + i);
   }
 };
+
+// The integral of |mean curvature| over a triangle mesh, (1/2) sum over its edges of |dihedral
+// angle| x length (Cohen-Steiner and Morvan 2003), with vertices welded where they lie within
+// `weld` of each other on a grid of that size (split seams join). Ripples and lumps add to it
+// however small they are; a surface that follows its source's shape adds about the source's.
+double AbsMeanCurvatureIntegral(const Triangles& m, double weld) {
+  std::map<std::array<long long, 3>, std::uint32_t> id;
+  std::vector<std::uint32_t> w(m.positions.size());
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    const Vec3& p = m.positions[i];
+    const std::array<long long, 3> key = {std::llround(p.x / weld), std::llround(p.y / weld),
+                                          std::llround(p.z / weld)};
+    w[i] = id.emplace(key, static_cast<std::uint32_t>(id.size())).first->second;
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  std::vector<Vec3> normal(m.indices.size() / 3);
+  for (std::size_t t = 0; t < normal.size(); ++t) {
+    const Vec3 &a = m.positions[m.indices[3 * t]], &b = m.positions[m.indices[3 * t + 1]],
+               &c = m.positions[m.indices[3 * t + 2]];
+    const Vec3 n = glm::cross(b - a, c - a);
+    const double l = glm::length(n);
+    normal[t] = l > 0.0 ? n / l : Vec3(0.0);
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t x = w[m.indices[3 * t + static_cast<std::size_t>(k)]];
+      const std::uint32_t y = w[m.indices[3 * t + static_cast<std::size_t>((k + 1) % 3)]];
+      if (x != y) edges[{std::min(x, y), std::max(x, y)}].push_back(t);
+    }
+  }
+  std::vector<Vec3> welded(id.size());
+  for (std::size_t i = 0; i < m.positions.size(); ++i) welded[w[i]] = m.positions[i];
+  double sum = 0.0;
+  for (const auto& e : edges) {
+    if (e.second.size() != 2) continue;
+    const double c = std::clamp(glm::dot(normal[e.second[0]], normal[e.second[1]]), -1.0, 1.0);
+    sum += 0.5 * std::acos(c) * glm::length(welded[e.first.second] - welded[e.first.first]);
+  }
+  return sum;
+}
+
+// How far the lod surface's normals turn from the source's shading normals (its NORMAL
+// attribute, interpolated across the closest source triangle): the mean and the 95th
+// percentile over the lod vertices, degrees. Ripples and lumps too small for the Hausdorff
+// distance show here (and in the shading). Vertices whose closest source point is further
+// than `near` are left out (they measure the distance, not the shading). -1 without normals.
+void ShadingDeviation(const Triangles& lod, const Triangles& source,
+                      const TriangleDistanceTree& tree, double near, double* mean, double* p95) {
+  *mean = *p95 = -1.0;
+  if (lod.normals.size() != lod.positions.size() ||
+      source.normals.size() != source.positions.size())
+    return;
+  std::vector<double> angle;
+  angle.reserve(lod.positions.size());
+  for (std::size_t i = 0; i < lod.positions.size(); ++i) {
+    const ClosestPoint q = tree.Query(lod.positions[i]);
+    if (q.triangle == kInvalidIndex || q.distance > near) continue;
+    const std::size_t t = 3 * static_cast<std::size_t>(q.triangle);
+    const Vec3 n = q.barycentric.x * source.normals[source.indices[t]] +
+                   q.barycentric.y * source.normals[source.indices[t + 1]] +
+                   q.barycentric.z * source.normals[source.indices[t + 2]];
+    const double ln = glm::length(n);
+    if (!(ln > 0.0)) continue;
+    const double c = std::clamp(glm::dot(n / ln, lod.normals[i]), -1.0, 1.0);
+    angle.push_back(std::acos(c) * 180.0 / 3.14159265358979323846);
+  }
+  if (angle.empty()) return;
+  double sum = 0.0;
+  for (double a : angle) sum += a;
+  *mean = sum / static_cast<double>(angle.size());
+  std::sort(angle.begin(), angle.end());
+  *p95 = angle[angle.size() * 95 / 100];
+}
 
 // Points on the triangles: the vertices and a barycentric grid of spacing about `h` inside.
 std::vector<Vec3> SampleTriangles(const Triangles& m, double h) {
@@ -658,21 +737,24 @@ int RunCharacters(const Settings& st) {
       "two-sided Hausdorff in %% of the source's bounding-box diagonal\n");
   std::printf(
       "| asset | source vertices (welded, fitted parts) | control vertices | Hausdorff %% | lod -> "
-      "source max %% | source -> lod max %% | E1 max (model) | coefficients | fit (s) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+      "source max %% | source -> lod max %% | E1 max (model) | shading normals mean / p95 (deg) | "
+      "integral of abs(H), lod / source | coefficients | fit (s) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const char* name : names) {
     // `--rows characters:Fox,CesiumMan` runs only the named ones.
     const std::size_t colon = st.rows.find("characters:");
     if (colon != std::string::npos && st.rows.find(name, colon) == std::string::npos) continue;
     const std::string path = std::string("../shared/data/gltf/") + name + ".glb";
     if (!std::filesystem::exists(path)) {
-      std::printf("| %s | skipped: %s not found | | | | | | | |\n", name, path.c_str());
+      std::printf("| %s | skipped: %s not found | | | | | | | | | |\n", name, path.c_str());
       continue;
     }
     Asset asset;
     Status s = ImportGltf(path, &asset);
     CharacterFitOptions options;
     ApplySettings(st, &options.fit);
+    if (st.level_smoothing >= 0.0) options.crease_smoothing = st.level_smoothing;  // as the CLI
+    if (st.crease_smoothing >= 0.0) options.crease_smoothing = st.crease_smoothing;
     if (st.samples >= 0.0) options.samples_per_control_edge = st.samples;
     if (st.crease_samples >= 0.0) options.crease_samples = st.crease_samples;
     if (st.crease_rows >= 0) options.crease_rows = st.crease_rows != 0;
@@ -703,7 +785,7 @@ int RunCharacters(const Settings& st) {
       const AssetPrimitive& prim = poser.asset()
                                        .meshes[static_cast<std::size_t>(d.mesh)]
                                        .primitives[static_cast<std::size_t>(d.primitive)];
-      lod.Append(posed[i].positions, PrimitiveTriangles(prim));
+      lod.Append(posed[i].positions, PrimitiveTriangles(prim), posed[i].normals);
     }
     AssetPose pose;
     RestPose(asset, &pose);
@@ -715,7 +797,30 @@ int RunCharacters(const Settings& st) {
       for (const AssetPrimitive& prim : asset.meshes[static_cast<std::size_t>(m)].primitives) {
         std::vector<glm::dvec3> x, nrm;
         PosePrimitive(asset, pose, world, static_cast<Index>(nd), prim, &x, &nrm);
-        source.Append(x, PrimitiveTriangles(prim));
+        const std::vector<std::uint32_t> tris = PrimitiveTriangles(prim);
+        if (nrm.size() == x.size()) {
+          std::vector<Vec3> unit;
+          for (const glm::dvec3& n : nrm) {
+            const double l = glm::length(n);
+            unit.push_back(l > 0.0 ? Vec3(n / l) : Vec3(0.0));
+          }
+          source.Append(x, tris, unit);
+        } else {
+          // No NORMAL attribute: glTF viewers shade each triangle flat.
+          std::vector<Vec3> x3, n3;
+          std::vector<std::uint32_t> t3;
+          for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
+            const Vec3 a = x[tris[t]], b = x[tris[t + 1]], c = x[tris[t + 2]];
+            const Vec3 n = glm::cross(b - a, c - a);
+            const double l = glm::length(n);
+            for (const Vec3& v : {a, b, c}) {
+              t3.push_back(static_cast<std::uint32_t>(x3.size()));
+              x3.push_back(v);
+              n3.push_back(l > 0.0 ? n / l : Vec3(0.0));
+            }
+          }
+          source.Append(x3, t3, n3);
+        }
       }
     }
     Vec3 lo(source.positions[0]), hi(lo);
@@ -739,10 +844,15 @@ int RunCharacters(const Settings& st) {
       control_vertices += static_cast<std::int64_t>(part.surface.rest_positions.size());
       coefficients += part.fit.coefficients;
     }
-    std::printf("| %s | %lld | %lld | %.2f | %.2f | %.2f | %.3g | %lld | %.2f |\n", name,
-                static_cast<long long>(points), static_cast<long long>(control_vertices),
-                std::max(x1, x2), x1, x2, report.e1_max, static_cast<long long>(coefficients),
-                report.seconds);
+    double shade_mean = -1.0, shade_p95 = -1.0;
+    ShadingDeviation(lod, source, source_tree, diagonal / 100.0, &shade_mean, &shade_p95);
+    const double curvature_ratio = AbsMeanCurvatureIntegral(lod, 1e-7 * diagonal) /
+                                   AbsMeanCurvatureIntegral(source, 1e-7 * diagonal);
+    std::printf(
+        "| %s | %lld | %lld | %.2f | %.2f | %.2f | %.3g | %.1f / %.1f | %.2f | %lld | %.2f |\n",
+        name, static_cast<long long>(points), static_cast<long long>(control_vertices),
+        std::max(x1, x2), x1, x2, report.e1_max, shade_mean, shade_p95, curvature_ratio,
+        static_cast<long long>(coefficients), report.seconds);
     for (std::size_t p = 0; p < report.part_control_meshes.size(); ++p) {
       const ControlMeshInfo& c = report.part_control_meshes[p];
       std::printf(
@@ -808,6 +918,8 @@ int main(int argc, char** argv) {
       st.detail = true;
     } else if (std::strcmp(argv[i], "--level-smoothing") == 0 && i + 1 < argc) {
       st.level_smoothing = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--crease-smoothing") == 0 && i + 1 < argc) {
+      st.crease_smoothing = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--crease-samples") == 0 && i + 1 < argc) {
       st.crease_samples = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--crease-rows") == 0 && i + 1 < argc) {

@@ -285,6 +285,8 @@ int RunFitCharacter(const FitArgs& a) {
   CharacterFitOptions options;
   options.vertex_ratio = a.control_ratio;
   ApplyDisplacementArgs(a, &options.fit.displacement);
+  // --level-smoothing is every part's, on either control mesh.
+  if (a.level_smoothing >= 0.0) options.crease_smoothing = a.level_smoothing;
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit.patch_agreement = a.patch_agreement;
   options.fit.cover_boundary = !a.no_cover_boundary;
@@ -473,9 +475,13 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "adaptive: points a lattice node needs under its support (density criterion; " +
                       DefaultText(sa.min_node_weight, ca.min_node_weight) + ")")
       ->check(CLI::Range(1e-3, 1e3));
+  char crease_smoothing[32];
+  std::snprintf(crease_smoothing, sizeof crease_smoothing, "%g",
+                CharacterFitOptions().crease_smoothing);
   cmd->add_option("--level-smoothing", args->level_smoothing,
                   "adaptive: thin-plate weight of every level (" +
-                      DefaultText(sa.smoothing, ca.smoothing) + ")")
+                      DefaultText(sa.smoothing, ca.smoothing) + "; " + crease_smoothing +
+                      " for a character's part whose control mesh keeps its creases)")
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--validation", args->validation,
                   "adaptive: fraction of the points that decides how many levels to keep (" +

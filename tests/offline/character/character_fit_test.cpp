@@ -3,8 +3,10 @@
 // .dsurf container and the bound / lod export builders.
 #include "dermis/offline/character/character_fit.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 #include "dermis/asset/asset_validate.h"
 #include "dermis/offline/build/control_mesh.h"
@@ -336,18 +338,20 @@ TEST_CASE("character: samples on a low-poly box's edges hold the surface to its 
   // still rounds the corners, where three creases meet. With the rows of samples beside the
   // creases (CharacterFitOptions::crease_rows) 0.095 on this control mesh without creases (the
   // characters' remeshes without creases improve with them, docs/characters.md), and the
-  // default below 0.0614 -> 0.0585.
+  // default below 0.0614 -> 0.0585. With the characters' smoothing of 1e-2 (2026-12-04)
+  // 0.066 against 0.308 sparse.
   CHECK(d < 0.1);
   CHECK(d_sparse > 2.0 * d);
   // With the box's 12 edges kept as control edges (the default), closer still: measured
   // 0.0614 (2.5 % of the diagonal) against 0.077, and 0.088 with the sparse samples (0.0585
-  // with the rows beside creases).
+  // with the rows beside creases; 0.0604 against 0.066 with the smoothing of 1e-2, which
+  // helps the mesh without creases more).
   CharacterFitOptions kept = options;
   kept.remesh_creases = true;
   std::int64_t kept_coefficients = 0;
   const double d_kept = LodBoxDistance(kept, &kept_coefficients);
   INFO("creases kept: " << d_kept << " (" << kept_coefficients << " coefficients)");
-  CHECK(d_kept < 0.9 * d);
+  CHECK(d_kept < 0.95 * d);
   CHECK(d_kept < 0.065);
 }
 
@@ -441,6 +445,63 @@ TEST_CASE("character: rows of samples beside a crease keep the surface from over
   CHECK(fw.hausdorff < 0.8 * fo.hausdorff);
   CHECK(fw.hausdorff < 0.007);
   CHECK(20 * fw.coefficients < 21 * fo.coefficients);  // within 5%
+}
+
+}  // namespace dermis
+
+namespace dermis {
+
+TEST_CASE("character: the flat sides of a low-poly box come out flat, not rippled") {
+  // Away from its edges each side of the box is flat, so the lod surface's normal there is the
+  // side's axis, independently of the fit. Ripples of the displacement between the samples
+  // (the finest levels under too little smoothing) turn it, though they move the surface by
+  // too little for any distance to show.
+  CharacterFitOptions options;
+  options.fit.threads = 2;
+  Character ch;
+  CharacterFitReport report;
+  REQUIRE(FitCharacter(LowPolyBox(), options, &ch, &report).ok());
+  CharacterExportOptions eo;
+  eo.level = 8;
+  Asset lod;
+  std::vector<std::string> notes;
+  REQUIRE(BuildLodAsset(ch, eo, &lod, &notes).ok());
+  const AssetPrimitive& prim = lod.meshes[0].primitives[0];
+  REQUIRE(prim.normals.size() == prim.positions.size());
+  const glm::dvec3 lo(0.0), hi(2.0, 1.0, 1.0);
+  std::vector<double> angle;  // degrees
+  for (std::size_t i = 0; i < prim.positions.size(); ++i) {
+    const glm::dvec3 p(prim.positions[i]);
+    // The nearest side, its outward axis, and the distance from that side's edges.
+    int axis = 0;
+    double nearest = std::numeric_limits<double>::infinity();
+    glm::dvec3 n(0.0);
+    for (int a = 0; a < 3; ++a) {
+      for (int side = 0; side < 2; ++side) {
+        const double d = std::abs(p[a] - (side ? hi[a] : lo[a]));
+        if (d < nearest) nearest = d, axis = a, n = glm::dvec3(0.0), n[a] = side ? 1.0 : -1.0;
+      }
+    }
+    double edge = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+      if (a != axis) edge = std::min(edge, std::min(p[a] - lo[a], hi[a] - p[a]));
+    }
+    if (edge < 0.3) continue;  // the rounding of the creases
+    const double c = glm::dot(glm::normalize(glm::dvec3(prim.normals[i])), n);
+    angle.push_back(std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / 3.14159265358979323846);
+  }
+  REQUIRE(angle.size() > 1000);
+  std::sort(angle.begin(), angle.end());
+  double mean = 0.0;
+  for (double a : angle) mean += a;
+  mean /= static_cast<double>(angle.size());
+  const double p95 = angle[angle.size() * 95 / 100];
+  INFO(angle.size() << " lod vertices away from the edges: normal off the side's axis by " << mean
+                    << " deg on average, " << p95 << " deg at the 95th percentile");
+  // Measured 0.87 and 2.96 deg with the characters' smoothing of 1e-2; 1.23 and 4.60 with the
+  // 1e-3 scans use (the default before 2026-12-04), whose ripples show in the shading.
+  CHECK(mean < 1.05);
+  CHECK(p95 < 3.8);
 }
 
 }  // namespace dermis

@@ -179,6 +179,27 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double cr
   return out;
 }
 
+/// Whether two triangles of `mesh` that share an edge turn by more than `crease_angle` radians
+/// (the remesher's creases, QuadRemeshOptions::crease_angle_deg).
+bool HasCrease(const PolygonMesh& mesh, double crease_angle) {
+  std::map<std::pair<Index, Index>, Vec3> first;
+  const double cos_crease = std::cos(crease_angle);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
+    const Vec3 n = glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
+                              mesh.positions[v[2]] - mesh.positions[v[0]]);
+    const double ln = glm::length(n);
+    if (!(ln > 0.0)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Index x = v[k], y = v[(k + 1) % 3];
+      const auto [it, inserted] =
+          first.emplace(std::make_pair(std::min(x, y), std::max(x, y)), n / ln);
+      if (!inserted && glm::dot(it->second, n / ln) < cos_crease) return true;
+    }
+  }
+  return false;
+}
+
 double Area(const PolygonMesh& mesh) {
   double area = 0.0;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
@@ -314,6 +335,9 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
   fo.remesh.sizing.max_turn = options.max_turn;
   if (options.remesh_creases) {
     fo.remesh.crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
+    if (options.crease_smoothing >= 0.0 && HasCrease(dense, options.crease_angle)) {
+      fo.displacement.adaptive.smoothing = options.crease_smoothing;
+    }
   }
   fo.clamp_control_vertices = true;
   FitInput input;
@@ -350,6 +374,7 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
     // Hausdorff distance is clearly lower.
     FitOptions po = fo;
     po.remesh.crease_angle_deg = 0.0;
+    po.displacement.adaptive.smoothing = options.fit.displacement.adaptive.smoothing;
     po.progress = nullptr;
     if (part_progress) {
       po.progress = [&](const char* st, std::size_t done, std::size_t total) {

@@ -21,12 +21,12 @@ struct CharacterFitOptions {
   /// one gets a parameter); `control_vertices` is ignored when vertex_ratio > 0.
   /// A character's mesh is exact (a game mesh, not a noisy scan) and its vertices are the
   /// bound export's vertices, so its displacements follow the fitted points closely: adaptive
-  /// levels with light smoothing and lower node weights, no validation split (levels stop
-  /// when they lower the fitted points' error by less than 1%), nodes refined where the error
-  /// is above the mean, at most 3 coefficients per fitted point (docs/fitting.md,
-  /// "Characters"). The control-vertex fit is off: a character's control
-  /// mesh has about a quarter of its vertices, too few points per control vertex to
-  /// determine their positions.
+  /// levels with lower node weights, no validation split (levels stop when they lower the
+  /// fitted points' error by less than 1%), nodes refined where the error is above the mean,
+  /// at most 3 coefficients per fitted point (docs/fitting.md, "Characters"); a scan's light
+  /// smoothing (1e-3), except on a control mesh that keeps the creases (crease_smoothing). The
+  /// control-vertex fit is off: a character's control mesh has about a quarter of its vertices, too
+  /// few points per control vertex to determine their positions.
   FitOptions fit = [] {
     FitOptions f;
     f.control_fit_iterations = 0;
@@ -76,6 +76,14 @@ struct CharacterFitOptions {
   /// The remeshed control mesh keeps the source's creases (dihedral above crease_angle) as
   /// control edges, as it keeps boundaries (QuadRemeshOptions::crease_angle_deg).
   bool remesh_creases = true;
+  /// The displacement levels' thin-plate weight (AdaptiveDisplacementOptions::smoothing) on a
+  /// control mesh that keeps creases, for a part that has some; < 0: fit.displacement's. There
+  /// the creases lie on control edges and the displacement need not carry them, and with the
+  /// light smoothing of fit.displacement the finest levels ripple between the samples (a few
+  /// per control edge), which the shading shows though no distance does (docs/characters.md,
+  /// "Ripples between the samples"). The plain remesh (compare_without_creases) keeps
+  /// fit.displacement's: its displacement carries the creases.
+  double crease_smoothing = 1e-2;
   /// With remesh_creases, also fit each component whose control mesh kept creases on the
   /// remesh without them, and keep the crease-aware fit only where its two-sided Hausdorff
   /// distance is below crease_margin times the other's: creases sharpen low-poly, hard-edged
