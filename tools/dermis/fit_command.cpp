@@ -53,6 +53,7 @@ struct FitArgs {
   int threads = 0;
   bool quiet = false;
   double control_ratio = CharacterFitOptions{}.vertex_ratio;
+  double shading_shape = CharacterFitOptions{}.shading_shape;
   bool refit = false;
   // Options given on the command line that only one kind of input takes (set at parse time):
   // a fit of the other kind refuses them instead of ignoring them.
@@ -229,6 +230,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   // A character's control meshes follow --control-ratio, and every vertex is fitted.
   for (const char* key : {"control-vertices", "holdout"}) options_json.erase(key);
   options_json["control-ratio"] = options.vertex_ratio;
+  options_json["shading-shape"] = options.shading_shape;
   options_json["refit"] = a.refit;
   Json j;
   StartReport(&j, "dermis.fit-character/1", std::move(options_json));
@@ -284,6 +286,7 @@ int RunFitCharacter(const FitArgs& a) {
   }
   CharacterFitOptions options;
   options.vertex_ratio = a.control_ratio;
+  options.shading_shape = a.shading_shape;
   ApplyDisplacementArgs(a, &options.fit.displacement);
   // --level-smoothing is every part's, on either control mesh.
   if (a.level_smoothing >= 0.0) options.crease_smoothing = a.level_smoothing;
@@ -553,6 +556,12 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "Characters: control vertices per welded mesh vertex")
       ->check(CLI::Range(0.01, 1.0))
       ->capture_default_str();
+  cmd->add_option("--shading-shape", args->shading_shape,
+                  "Characters: data samples on the surface the source's shading normals describe "
+                  "(Phong tessellation with this shape factor, e.g. 0.75) instead of its flat "
+                  "triangles; hard edges and flat-shaded triangles stay flat (docs/characters.md)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
@@ -570,7 +579,9 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         for (const char* name : {"--control-vertices", "--control-mesh", "--holdout"}) {
           if (cmd->count(name) > 0) args->surface_only.push_back(name);
         }
-        if (cmd->count("--control-ratio") > 0) args->character_only.push_back("--control-ratio");
+        for (const char* name : {"--control-ratio", "--shading-shape"}) {
+          if (cmd->count(name) > 0) args->character_only.push_back(name);
+        }
         if (args->refit) args->character_only.push_back("--refit");  // --refit=false is fine
         for (const char* name : {"--control-vertices", "--control-fit", "--patch-agreement"}) {
           if (cmd->count(name) > 0) args->automatic_only.push_back(name);

@@ -103,37 +103,85 @@ VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalP
 /// domain surface rounds a crease, and only data on the crease line ask the displacement to
 /// follow it (docs/characters.md, "Where the distances are"). With `crease_rows`, rows of
 /// points beside those edges fill the gap to the grid of a large triangle (below).
-std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double crease_angle,
+///
+/// With `shape` > 0 and the source's shading normals (`corner_normals`, 3 per face, unit; 0
+/// where it has none) the points lie on the surface those normals shade rather than on the flat
+/// triangles: Phong tessellation (Boubekeur and Alexa 2008, shape factor `shape`), which
+/// passes through the vertices and, along an edge whose two triangles share its ends' normals,
+/// is the same curve from both sides. An edge whose normals differ across it (a hard edge) and
+/// a triangle without normals keep straight, flat samples.
+std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const std::vector<Vec3>& corner_normals,
+                              double shape, double spacing, double crease_angle,
                               double crease_factor, bool crease_rows) {
   std::vector<Vec3> out;
   if (!(spacing > 0.0)) return out;
-  std::vector<Vec3> normal(static_cast<std::size_t>(mesh.num_faces()));
+  const std::size_t nf = static_cast<std::size_t>(mesh.num_faces());
+  std::vector<Vec3> normal(nf);
   // Segments per edge of each triangle's grid of samples (0: too small for a grid).
-  std::vector<int> grid(static_cast<std::size_t>(mesh.num_faces()), 0);
+  std::vector<int> grid(nf, 0);
   std::map<std::pair<Index, Index>, std::vector<Index>> edges;
+  // Whether each face has shading normals for the Phong surface, and those normals: a corner
+  // normal further than the crease angle from its triangle's (a box shaded smooth, whose
+  // silhouette a renderer keeps) is replaced by the triangle's.
+  std::vector<char> shaded(nf, 0);
+  std::vector<Vec3> shading(corner_normals.size() == 3 * nf ? 3 * nf : 0);
+  const double cos_crease = std::cos(crease_angle);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const std::size_t fi = static_cast<std::size_t>(f);
     const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
     const Vec3 &a = mesh.positions[v[0]], &b = mesh.positions[v[1]], &c = mesh.positions[v[2]];
     const Vec3 n = glm::cross(b - a, c - a);
     const double ln = glm::length(n);
-    normal[static_cast<std::size_t>(f)] = ln > 0.0 ? n / ln : Vec3(0.0);
+    normal[fi] = ln > 0.0 ? n / ln : Vec3(0.0);
     for (int k = 0; k < 3; ++k) {
       const Index x = v[k], y = v[(k + 1) % 3];
       edges[{std::min(x, y), std::max(x, y)}].push_back(f);
     }
+    if (shape > 0.0 && !shading.empty() && ln > 0.0) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& cn = corner_normals[3 * fi + static_cast<std::size_t>(k)];
+        if (glm::dot(cn, cn) == 0.0) break;  // the primitive has no normals
+        shading[3 * fi + static_cast<std::size_t>(k)] =
+            glm::dot(cn, normal[fi]) >= cos_crease ? cn : normal[fi];
+        if (k == 2) shaded[fi] = 1;
+      }
+    }
+  }
+  // The point at barycentric weights w of face f (w[k] for its k-th corner).
+  auto at = [&](std::size_t f, const double w[3]) {
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
+    Vec3 p(0.0);
+    for (int k = 0; k < 3; ++k) p += w[k] * mesh.positions[v[k]];
+    if (!shaded[f]) return p;
+    Vec3 q(0.0);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& n = shading[3 * f + static_cast<std::size_t>(k)];
+      q += w[k] * (p - glm::dot(p - mesh.positions[v[k]], n) * n);
+    }
+    return (1.0 - shape) * p + shape * q;
+  };
+  auto corner = [&](Index f, Index vertex) {
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
+    int k = 0;
+    while (k < 2 && v[k] != vertex) ++k;
+    return k;
+  };
+  for (std::size_t f = 0; f < nf; ++f) {
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
+    const Vec3 &a = mesh.positions[v[0]], &b = mesh.positions[v[1]], &c = mesh.positions[v[2]];
     const double longest =
         std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
     if (!(longest > 2.0 * spacing)) continue;
     const int n_grid = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
-    grid[static_cast<std::size_t>(f)] = n_grid;
+    grid[f] = n_grid;
     for (int i = 1; i < n_grid; ++i) {
       for (int j = 1; i + j < n_grid; ++j) {
         const double s = double(i) / n_grid, t = double(j) / n_grid;
-        out.push_back((1.0 - s - t) * a + s * b + t * c);
+        const double w[3] = {1.0 - s - t, s, t};
+        out.push_back(at(f, w));
       }
     }
   }
-  const double cos_crease = std::cos(crease_angle);
   for (const auto& e : edges) {
     bool sharp = e.second.size() != 2;
     if (!sharp) {
@@ -143,9 +191,29 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double cr
     const Vec3 &a = mesh.positions[e.first.first], &b = mesh.positions[e.first.second];
     const double h = sharp ? spacing / std::max(1.0, crease_factor) : spacing;
     const int n_edge = std::min(128, static_cast<int>(std::ceil(glm::length(b - a) / h)));
+    // The edge's curve where both triangles shade it alike (the same normals at its ends);
+    // straight otherwise.
+    const std::size_t f0 = static_cast<std::size_t>(e.second[0]);
+    const int ka = corner(e.second[0], e.first.first), kb = corner(e.second[0], e.first.second);
+    bool curved =
+        e.second.size() == 2 && shaded[f0] && shaded[static_cast<std::size_t>(e.second[1])];
+    if (curved) {
+      const std::size_t f1 = static_cast<std::size_t>(e.second[1]);
+      const int ja = corner(e.second[1], e.first.first), jb = corner(e.second[1], e.first.second);
+      curved = glm::length(shading[3 * f0 + static_cast<std::size_t>(ka)] -
+                           shading[3 * f1 + static_cast<std::size_t>(ja)]) < 1e-6 &&
+               glm::length(shading[3 * f0 + static_cast<std::size_t>(kb)] -
+                           shading[3 * f1 + static_cast<std::size_t>(jb)]) < 1e-6;
+    }
     for (int i = 1; i < n_edge; ++i) {
       const double s = double(i) / n_edge;
-      out.push_back((1.0 - s) * a + s * b);
+      if (curved) {
+        double w[3] = {0.0, 0.0, 0.0};
+        w[ka] = 1.0 - s, w[kb] = s;
+        out.push_back(at(f0, w));
+      } else {
+        out.push_back((1.0 - s) * a + s * b);
+      }
     }
     if (!sharp || !crease_rows || crease_factor <= 1.0) continue;
     // The grid inside a large triangle (above) starts one grid row, height / n_grid, away from
@@ -157,11 +225,12 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double cr
       const int n_grid = grid[static_cast<std::size_t>(f)];
       if (n_grid == 0) continue;  // no grid inside: no gap to fill
       const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
-      Index third = v[0];
+      int kc = 0;
       for (int k = 0; k < 3; ++k) {
-        if (v[k] != e.first.first && v[k] != e.first.second) third = v[k];
+        if (v[k] != e.first.first && v[k] != e.first.second) kc = k;
       }
-      const Vec3& c = mesh.positions[third];
+      const int fa = corner(f, e.first.first), fb = corner(f, e.first.second);
+      const Vec3& c = mesh.positions[v[kc]];
       const double base = glm::length(b - a);
       const double height = base > 0.0 ? glm::length(glm::cross(b - a, c - a)) / base : 0.0;
       const double gap = height / n_grid;
@@ -171,7 +240,10 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, double spacing, double cr
         const int n_row = std::min(128, static_cast<int>(std::ceil(glm::length(q - p) / spacing)));
         for (int i = 0; i <= n_row; ++i) {
           const double s = double(i) / std::max(1, n_row);
-          out.push_back((1.0 - s) * p + s * q);
+          // (1 - s) p + s q in the face's barycentric weights.
+          double w[3] = {0.0, 0.0, 0.0};
+          w[fa] = (1.0 - s) * (1.0 - t), w[fb] = s * (1.0 - t), w[kc] = t;
+          out.push_back(at(static_cast<std::size_t>(f), w));
         }
       }
     }
@@ -217,6 +289,9 @@ struct WeldedMesh {
   std::vector<VertexRef> representative;   ///< An original vertex of each welded one.
   std::vector<std::vector<Index>> welded;  ///< [primitive][vertex] -> welded vertex, or none.
   std::vector<std::uint32_t> triangles;    ///< Non-degenerate, in welded vertices.
+  /// The primitive's shading normal at each corner of `triangles` (unit), or 0 where the
+  /// primitive has none.
+  std::vector<Vec3> corner_normals;
 };
 
 WeldedMesh WeldMesh(const AssetMesh& mesh) {
@@ -244,6 +319,16 @@ WeldedMesh WeldMesh(const AssetMesh& mesh) {
       }
       if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
       w.triangles.insert(w.triangles.end(), {tri[0], tri[1], tri[2]});
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = tris[t + static_cast<std::size_t>(k)];
+        Vec3 n(0.0);
+        if (prim.normals.size() == prim.positions.size()) {
+          n = Vec3(prim.normals[v]);
+          const double l = glm::length(n);
+          n = l > 0.0 && std::isfinite(l) ? n / l : Vec3(0.0);
+        }
+        w.corner_normals.push_back(n);
+      }
     }
   }
   return w;
@@ -287,6 +372,7 @@ Components SplitComponents(const WeldedMesh& w) {
 struct ComponentMesh {
   PolygonMesh dense;
   std::vector<Index> local, global;
+  std::vector<Vec3> corner_normals;  ///< 3 per face of `dense` (WeldedMesh::corner_normals).
 };
 
 ComponentMesh MakeComponentMesh(const WeldedMesh& w, const Components& components, std::size_t c,
@@ -304,6 +390,9 @@ ComponentMesh MakeComponentMesh(const WeldedMesh& w, const Components& component
   for (std::size_t t : components.triangles[c]) {
     cm.dense.AddFace(
         {cm.local[w.triangles[t]], cm.local[w.triangles[t + 1]], cm.local[w.triangles[t + 2]]});
+    cm.corner_normals.insert(cm.corner_normals.end(),
+                             w.corner_normals.begin() + static_cast<std::ptrdiff_t>(t),
+                             w.corner_normals.begin() + static_cast<std::ptrdiff_t>(t + 3));
   }
   return cm;
 }
@@ -313,7 +402,8 @@ ComponentMesh MakeComponentMesh(const WeldedMesh& w, const Components& component
 /// the simplification's control mesh instead of the remesh where it fits clearly better (then
 /// `kept_simplified` says so). Returns an empty string or why the component stays unfitted.
 /// `part_progress`, if set, gets the stage and the fraction of the component's work done.
-std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& options,
+std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corner_normals,
+                         const CharacterFitOptions& options,
                          const std::function<void(const std::string&, double)>& part_progress,
                          FittedSurface* fitted, FitReport* fr, std::string* kept_simplified) {
   std::string reason = CheckComponent(dense, options.min_vertices);
@@ -344,9 +434,9 @@ std::string FitComponent(const PolygonMesh& dense, const CharacterFitOptions& op
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
   if (options.samples_per_control_edge > 0.0) {
     const double edge = std::sqrt(Area(dense) / fo.control_vertices);
-    const std::vector<Vec3> extra =
-        AreaSamples(dense, edge / options.samples_per_control_edge, options.crease_angle,
-                    options.crease_samples, options.crease_rows);
+    const std::vector<Vec3> extra = AreaSamples(
+        dense, corner_normals, options.shading_shape, edge / options.samples_per_control_edge,
+        options.crease_angle, options.crease_samples, options.crease_rows);
     input.points.insert(input.points.end(), extra.begin(), extra.end());
   }
   input.mesh = &dense;
@@ -602,7 +692,8 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
           options.progress(what.c_str(), std::min(done, work_total), work_total);
         };
       }
-      unfitted.reason = FitComponent(dense, options, part_progress, &fitted, &fr, &kept_simplified);
+      unfitted.reason = FitComponent(dense, cm.corner_normals, options, part_progress, &fitted, &fr,
+                                     &kept_simplified);
       if (!unfitted.reason.empty()) {
         ch.unfitted.push_back(unfitted);
         ++rep.parts_unfitted;

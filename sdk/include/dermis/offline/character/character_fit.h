@@ -73,6 +73,14 @@ struct CharacterFitOptions {
   /// the samples are crease_samples times as dense across a crease as along the grid (the
   /// finest displacement levels otherwise overshoot the crease in that gap).
   bool crease_rows = true;
+  /// The samples inside the triangles and along their smooth edges lie on the surface the
+  /// source's shading normals describe (Phong tessellation, Boubekeur and Alexa 2008, this
+  /// shape factor; 0.75 is theirs): a smooth-shaded low-poly mesh is drawn smooth, and samples
+  /// on its flat triangles would ask the surface for the facets' kinks, which the displacement
+  /// can only follow with ripples. Hard edges (normals that differ across the edge), flat-shaded
+  /// triangles and primitives without normals keep flat samples; the vertices are fitted as
+  /// they are. 0: flat triangles everywhere (before 2026-12-04).
+  double shading_shape = 0.0;
   /// The remeshed control mesh keeps the source's creases (dihedral above crease_angle) as
   /// control edges, as it keeps boundaries (QuadRemeshOptions::crease_angle_deg).
   bool remesh_creases = true;
