@@ -28,6 +28,7 @@
 //                             [--level-smoothing S] (every fit's levels, characters' parts too)
 //                             [--crease-smoothing S] (characters' parts on a crease-kept mesh)
 //                             [--shading-shape A] (characters' samples on the Phong surface)
+//                             [--vertex-weight W] (characters' vertices against one sample)
 //                             [--detail] [--mba]
 // --density, --finest-passes and --smoothing set the paper's per-chart MBA (--mba); the default
 // displacement fit is the adaptive one (docs/fitting.md, "Adaptive displacement levels").
@@ -214,6 +215,7 @@ struct Settings {
   double level_smoothing = -1.0;   // -1: the adaptive fit's default
   double crease_smoothing = -1.0;  // -1: CharacterFitOptions' default
   double shading_shape = -1.0;     // -1: CharacterFitOptions' default
+  double vertex_weight = -1.0;     // -1: CharacterFitOptions' default
   bool Row(const char* name) const { return rows.find(name) != std::string::npos; }
 };
 
@@ -758,6 +760,7 @@ int RunCharacters(const Settings& st) {
     if (st.level_smoothing >= 0.0) options.crease_smoothing = st.level_smoothing;  // as the CLI
     if (st.crease_smoothing >= 0.0) options.crease_smoothing = st.crease_smoothing;
     if (st.shading_shape >= 0.0) options.shading_shape = st.shading_shape;
+    if (st.vertex_weight > 0.0) options.vertex_weight = st.vertex_weight;
     if (st.samples >= 0.0) options.samples_per_control_edge = st.samples;
     if (st.crease_samples >= 0.0) options.crease_samples = st.crease_samples;
     if (st.crease_rows >= 0) options.crease_rows = st.crease_rows != 0;
@@ -925,6 +928,8 @@ int main(int argc, char** argv) {
       st.crease_smoothing = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--shading-shape") == 0 && i + 1 < argc) {
       st.shading_shape = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--vertex-weight") == 0 && i + 1 < argc) {
+      st.vertex_weight = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--crease-samples") == 0 && i + 1 < argc) {
       st.crease_samples = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--crease-rows") == 0 && i + 1 < argc) {

@@ -178,7 +178,8 @@ TEST_CASE("adaptive fit: the residual criterion refines only where the error is"
 }
 
 TEST_CASE("adaptive fit: a level solves its stated objective (dense reference)", "[adaptive]") {
-  // Two charts sharing points with different weights and normals, and points of their own.
+  // Two charts sharing points with different weights and normals, and points of their own;
+  // every point's squared error weighted (DisplacementTarget::weight, 0.5 to 4).
   test::Lcg rng(3);
   std::vector<DisplacementTarget> targets;
   for (int n = 0; n < 160; ++n) {
@@ -198,6 +199,8 @@ TEST_CASE("adaptive fit: a level solves its stated objective (dense reference)",
     }
     targets.push_back(t);
   }
+  test::Lcg weights(5);
+  for (DisplacementTarget& t : targets) t.weight = 0.5 + 3.5 * weights.Next();
   const std::vector<double> half = {1.0, 1.1};
   for (int level = 0; level <= 1; ++level) {
     LevelFitOptions o;
@@ -265,11 +268,11 @@ TEST_CASE("adaptive fit: a level solves its stated objective (dense reference)",
         a += o.consistency * psi * cons * cons.transpose();
         b += o.consistency * psi * own * cons;
       }
-      a += row.transpose() * row;
-      b += row.transpose() * rhs;
+      a += t.weight * row.transpose() * row;
+      b += t.weight * row.transpose() * rhs;
     }
     // Thin plate per chart: every second difference inside the lattice touching an active
-    // node, inactive nodes 0; lambda = smoothing * mean node weight.
+    // node, inactive nodes 0; lambda = smoothing * mean node weight (unweighted: points).
     for (std::size_t c = 0; c < 2; ++c) {
       const double n = static_cast<double>(fitter.nodes(c).size());
       if (n == 0) continue;

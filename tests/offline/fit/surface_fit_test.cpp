@@ -551,6 +551,19 @@ TEST_CASE("fit: bad inputs give clear errors") {
   CHECK_FALSE(s.ok());
   CHECK(s.message().find("point 5") != std::string::npos);
 
+  FitInput weights;
+  weights.points = dense.positions;
+  weights.mesh = &dense;
+  weights.weights.assign(dense.positions.size() - 1, 1.0);
+  s = FitSurface(weights, options, &fitted, &report);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("point weights for") != std::string::npos);
+  weights.weights.assign(dense.positions.size(), 1.0);
+  weights.weights[7] = 0.0;
+  s = FitSurface(weights, options, &fitted, &report);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("point 7 has a weight") != std::string::npos);
+
   FitInput too_many;
   too_many.points = dense.positions;
   too_many.mesh = &dense;

@@ -423,9 +423,12 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // mesh follows the component within max_deviation of its diagonal.
   fo.remesh.max_deviation = options.max_deviation;
   fo.remesh.sizing.max_turn = options.max_turn;
+  // On a control mesh that keeps the part's creases: smoother levels, heavier vertices.
+  bool crease_fit = false;
   if (options.remesh_creases) {
     fo.remesh.crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
-    if (options.crease_smoothing >= 0.0 && HasCrease(dense, options.crease_angle)) {
+    crease_fit = HasCrease(dense, options.crease_angle);
+    if (crease_fit && options.crease_smoothing >= 0.0) {
       fo.displacement.adaptive.smoothing = options.crease_smoothing;
     }
   }
@@ -438,6 +441,12 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
         dense, corner_normals, options.shading_shape, edge / options.samples_per_control_edge,
         options.crease_angle, options.crease_samples, options.crease_rows);
     input.points.insert(input.points.end(), extra.begin(), extra.end());
+  }
+  if (crease_fit && options.vertex_weight != 1.0) {
+    input.weights.assign(input.points.size(), 1.0);
+    std::fill(input.weights.begin(),
+              input.weights.begin() + static_cast<std::ptrdiff_t>(dense.positions.size()),
+              options.vertex_weight);
   }
   input.mesh = &dense;
   // With the simplification's fit to compare, each fit is half of the component's work.
@@ -476,7 +485,9 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     }
     FittedSurface alt;
     FitReport alt_report;
-    if (FitSurface(input, po, &alt, &alt_report).ok() &&
+    FitInput plain_input = input;
+    plain_input.weights.clear();
+    if (FitSurface(plain_input, po, &alt, &alt_report).ok() &&
         !(fr->error.hausdorff < options.crease_margin * alt_report.error.hausdorff)) {
       char note[200];
       std::snprintf(note, sizeof(note),

@@ -111,7 +111,9 @@ DisplacementLevelFitter::DisplacementLevelFitter(const std::vector<double>& half
       const DisplacementTarget& t = targets_[i];
       Vec3 n(0.0);
       for (int s = 0; s < t.count; ++s) n += t.a[s];
-      target_[i] = t.delta * n;
+      // A weighted point's row and target are scaled by sqrt(weight), so that its squared
+      // error counts weight times (f_ and target_ are in those units).
+      target_[i] = std::sqrt(t.weight) * t.delta * n;
     }
   }
   // The samples of the fitted points grouped by chart, in point order.
@@ -133,7 +135,8 @@ DisplacementLevelFitter::DisplacementLevelFitter(const std::vector<double>& half
       en.point = static_cast<std::uint32_t>(p);
       en.psi = glm::length(t.a[s]);
       en.z = t.z[s];
-      en.a = t.a[s];
+      en.a = std::sqrt(t.weight) * t.a[s];
+      en.w = t.weight;
       point_entries_[4 * p + static_cast<std::size_t>(s)] = e;
     }
   }
@@ -348,8 +351,8 @@ void DisplacementLevelFitter::Prepare() {
         if (i < 0 || j < 0 || i + 3 >= ch.w || j + 3 >= ch.h) continue;  // touches no active node
         bl.base = static_cast<std::int32_t>(ch.window + j * ch.w + i);
         bl.w = ch.w;
-        const double psi = entries_[static_cast<std::size_t>(q)].psi;
-        const double a2 = psi * psi + opt_.consistency * psi;
+        const Entry& en = entries_[static_cast<std::size_t>(q)];
+        const double a2 = en.w * en.psi * en.psi + opt_.consistency * en.psi;
         for (int l = 0; l < 4; ++l) {
           for (int k = 0; k < 4; ++k) {
             const double wk = static_cast<double>(bl.bs[k]) * bl.bt[l];
@@ -522,8 +525,9 @@ void DisplacementLevelFitter::Update() {
     for (std::size_t p = b; p < e; ++p) {
       const std::uint32_t i = eval_[p];
       const DisplacementTarget& t = targets_[i];
+      const double sw = std::sqrt(t.weight);
       for (int s = 0; s < t.count; ++s) {
-        f_[i] += LevelValue(static_cast<std::size_t>(t.chart[s]), t.z[s]) * t.a[s];
+        f_[i] += LevelValue(static_cast<std::size_t>(t.chart[s]), t.z[s]) * (sw * t.a[s]);
       }
     }
   });

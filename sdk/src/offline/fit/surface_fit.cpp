@@ -106,6 +106,19 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     ReportProgress(options.progress, stage, std::min(done, work_total), work_total);
   };
   if (input.points.empty()) return Status::InvalidInput(where + ": no data points to fit");
+  if (!input.weights.empty()) {
+    if (input.weights.size() != input.points.size()) {
+      return Status::InvalidInput(where + ": " + std::to_string(input.weights.size()) +
+                                  " point weights for " + std::to_string(input.points.size()) +
+                                  " points");
+    }
+    for (std::size_t i = 0; i < input.weights.size(); ++i) {
+      if (!(input.weights[i] > 0.0) || !std::isfinite(input.weights[i])) {
+        return Status::InvalidInput(where + ": point " + std::to_string(i) +
+                                    " has a weight that is not positive and finite");
+      }
+    }
+  }
   Vec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
   for (std::size_t i = 0; i < input.points.size(); ++i) {
     const Vec3& p = input.points[i];
@@ -152,9 +165,15 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   rep.control_vertices = domain.num_vertices();
   rep.control_faces = domain.num_faces();
   std::vector<Vec3> fit_points, holdout_points;
+  std::vector<double> fit_weights;  // empty: every point 1
+  const bool weighted = !input.weights.empty();
   for (std::size_t i = 0; i < input.points.size(); ++i) {
-    (IsHeldOut(i, options.holdout, options.holdout_seed) ? holdout_points : fit_points)
-        .push_back(input.points[i]);
+    if (IsHeldOut(i, options.holdout, options.holdout_seed)) {
+      holdout_points.push_back(input.points[i]);
+    } else {
+      fit_points.push_back(input.points[i]);
+      if (weighted) fit_weights.push_back(input.weights[i]);
+    }
   }
   if (fit_points.empty()) return Status::InvalidInput(where + ": every point was held out");
   PointFitOptions pf;
@@ -244,7 +263,13 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   dopt.threads = rep.threads;
   if (dopt.method == DisplacementMethod::kAdaptive) {
     std::vector<DisplacementTarget> targets;
-    MakeDisplacementTargets(domain, patches, fits, &targets);
+    std::vector<std::size_t> target_point;
+    MakeDisplacementTargets(domain, patches, fits, &targets, &target_point);
+    if (weighted) {
+      for (std::size_t k = 0; k < targets.size(); ++k) {
+        targets[k].weight = fit_weights[target_point[k]];
+      }
+    }
     std::vector<double> half(static_cast<std::size_t>(domain.num_vertices()));
     for (Index v = 0; v < domain.num_vertices(); ++v) {
       half[static_cast<std::size_t>(v)] =

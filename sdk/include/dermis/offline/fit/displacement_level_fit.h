@@ -22,6 +22,9 @@ struct DisplacementTarget {
   Vec2 z[4];                      ///< The point in each chart's coordinates.
   Vec3 a[4];                      ///< psi_j N_j: weight times unit patch normal.
   double delta = 0.0;             ///< The common displacement (model units).
+  /// Weight of the point's squared error in the least squares (> 0): a character's vertices
+  /// weigh more than the samples between them (FitInput::weights).
+  double weight = 1.0;
 };
 
 /// Options of DisplacementLevelFitter.
@@ -92,7 +95,8 @@ class DisplacementLevelFitter {
     std::uint32_t point = 0;  // position in fit_
     double psi = 0.0;
     Vec2 z{0.0};
-    Vec3 a{0.0};
+    Vec3 a{0.0};     // sqrt(weight) psi N: the point's weight folded into its row
+    double w = 1.0;  // the point's weight
   };
   // A sample's cell at the current level and, when its 4 x 4 block touches an active node, the
   // block's first position in the window arrays.

@@ -72,6 +72,11 @@ struct FitInput {
   const PolygonMesh* control = nullptr;
   /// Input vertices no face used (dropped before the fit), for the report.
   std::int64_t points_dropped = 0;
+  /// Per point (same order as `points`), the weight of its squared error in the adaptive
+  /// displacement fit's least squares (> 0; a character's vertices weigh more than the samples
+  /// between them, CharacterFitOptions::vertex_weight), or empty: every point 1. The other
+  /// stages and the errors reported do not use it.
+  std::vector<double> weights;
 };
 
 /// Distances in the paper's unit: the data scaled so that its bounding box's largest side is 1.
