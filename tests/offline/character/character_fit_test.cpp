@@ -295,20 +295,27 @@ double BoxDistance(const glm::dvec3& p) {
   return std::min(in.x, std::min(in.y, in.z));
 }
 
-/// The largest distance of the level-8 lod surface's vertices from the box.
-double LodBoxDistance(const CharacterFitOptions& options, std::int64_t* coefficients) {
+/// Fits a one-part asset and returns its level-8 lod surface (positions and normals); the
+/// part's coefficient count in `coefficients` if given.
+AssetPrimitive FitLevel8Lod(const Asset& asset, const CharacterFitOptions& options,
+                            std::int64_t* coefficients = nullptr) {
   Character ch;
   CharacterFitReport report;
-  REQUIRE(FitCharacter(LowPolyBox(), options, &ch, &report).ok());
+  REQUIRE(FitCharacter(asset, options, &ch, &report).ok());
   REQUIRE(report.parts_fitted == 1);
-  *coefficients = ch.parts[0].fit.coefficients;
+  if (coefficients) *coefficients = ch.parts[0].fit.coefficients;
   CharacterExportOptions eo;
   eo.level = 8;
   Asset lod;
   std::vector<std::string> notes;
   REQUIRE(BuildLodAsset(ch, eo, &lod, &notes).ok());
+  return lod.meshes[0].primitives[0];
+}
+
+/// The largest distance of the level-8 lod surface's vertices from the box.
+double LodBoxDistance(const CharacterFitOptions& options, std::int64_t* coefficients) {
   double worst = 0.0;
-  for (const glm::vec3& p : lod.meshes[0].primitives[0].positions) {
+  for (const glm::vec3& p : FitLevel8Lod(LowPolyBox(), options, coefficients).positions) {
     worst = std::max(worst, BoxDistance(glm::dvec3(p)));
   }
   return worst;
@@ -458,15 +465,7 @@ TEST_CASE("character: the flat sides of a low-poly box come out flat, not ripple
   // too little for any distance to show.
   CharacterFitOptions options;
   options.fit.threads = 2;
-  Character ch;
-  CharacterFitReport report;
-  REQUIRE(FitCharacter(LowPolyBox(), options, &ch, &report).ok());
-  CharacterExportOptions eo;
-  eo.level = 8;
-  Asset lod;
-  std::vector<std::string> notes;
-  REQUIRE(BuildLodAsset(ch, eo, &lod, &notes).ok());
-  const AssetPrimitive& prim = lod.meshes[0].primitives[0];
+  const AssetPrimitive prim = FitLevel8Lod(LowPolyBox(), options);
   REQUIRE(prim.normals.size() == prim.positions.size());
   const glm::dvec3 lo(0.0), hi(2.0, 1.0, 1.0);
   std::vector<double> angle;  // degrees
@@ -568,18 +567,9 @@ double LodCylinderDeviation(const Asset& asset, double shading_shape) {
   CharacterFitOptions options;
   options.fit.threads = 2;
   options.shading_shape = shading_shape;
-  Character ch;
-  CharacterFitReport report;
-  REQUIRE(FitCharacter(asset, options, &ch, &report).ok());
-  REQUIRE(report.parts_fitted == 1);
-  CharacterExportOptions eo;
-  eo.level = 8;
-  Asset lod;
-  std::vector<std::string> notes;
-  REQUIRE(BuildLodAsset(ch, eo, &lod, &notes).ok());
   double sum = 0.0;
   int count = 0;
-  for (const glm::vec3& p : lod.meshes[0].primitives[0].positions) {
+  for (const glm::vec3& p : FitLevel8Lod(asset, options).positions) {
     if (p.z < 1.0f || p.z > 2.0f) continue;
     sum += std::abs(std::hypot(double(p.x), double(p.y)) - 1.0);
     ++count;
