@@ -25,7 +25,8 @@
 //                             [--smoothing S] [--samples S] [--crease-samples C] [--crease-angle A]
 //                             [--max-turn T] [--repeat R] [--where] [--node-weight W]
 //                             [--budget COEFFICIENTS_PER_POINT]
-//                             [--level-smoothing S] (every fit's levels, characters' parts too)
+//                             [--level-smoothing S] (the levels' smoothing; characters' parts
+//                             on a control mesh without creases)
 //                             [--crease-smoothing S] (characters' parts on a crease-kept mesh)
 //                             [--shading-shape A] (characters' samples on the Phong surface)
 //                             [--vertex-weight W] (characters' vertices against one sample)
@@ -757,7 +758,6 @@ int RunCharacters(const Settings& st) {
     Status s = ImportGltf(path, &asset);
     CharacterFitOptions options;
     ApplySettings(st, &options.fit);
-    if (st.level_smoothing >= 0.0) options.crease_smoothing = st.level_smoothing;  // as the CLI
     if (st.crease_smoothing >= 0.0) options.crease_smoothing = st.crease_smoothing;
     if (st.shading_shape >= 0.0) options.shading_shape = st.shading_shape;
     if (st.vertex_weight > 0.0) options.vertex_weight = st.vertex_weight;

@@ -54,6 +54,8 @@ struct FitArgs {
   bool quiet = false;
   double control_ratio = CharacterFitOptions{}.vertex_ratio;
   double shading_shape = CharacterFitOptions{}.shading_shape;
+  double crease_smoothing = CharacterFitOptions{}.crease_smoothing;
+  double vertex_weight = CharacterFitOptions{}.vertex_weight;
   bool refit = false;
   // Options given on the command line that only one kind of input takes (set at parse time):
   // a fit of the other kind refuses them instead of ignoring them.
@@ -231,6 +233,8 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   for (const char* key : {"control-vertices", "holdout"}) options_json.erase(key);
   options_json["control-ratio"] = options.vertex_ratio;
   options_json["shading-shape"] = options.shading_shape;
+  options_json["crease-smoothing"] = options.crease_smoothing;
+  options_json["vertex-weight"] = options.vertex_weight;
   options_json["refit"] = a.refit;
   Json j;
   StartReport(&j, "dermis.fit-character/1", std::move(options_json));
@@ -287,9 +291,9 @@ int RunFitCharacter(const FitArgs& a) {
   CharacterFitOptions options;
   options.vertex_ratio = a.control_ratio;
   options.shading_shape = a.shading_shape;
+  options.crease_smoothing = a.crease_smoothing;
+  options.vertex_weight = a.vertex_weight;
   ApplyDisplacementArgs(a, &options.fit.displacement);
-  // --level-smoothing is every part's, on either control mesh.
-  if (a.level_smoothing >= 0.0) options.crease_smoothing = a.level_smoothing;
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit.patch_agreement = a.patch_agreement;
   options.fit.cover_boundary = !a.no_cover_boundary;
@@ -478,13 +482,11 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "adaptive: points a lattice node needs under its support (density criterion; " +
                       DefaultText(sa.min_node_weight, ca.min_node_weight) + ")")
       ->check(CLI::Range(1e-3, 1e3));
-  char crease_smoothing[32];
-  std::snprintf(crease_smoothing, sizeof crease_smoothing, "%g",
-                CharacterFitOptions().crease_smoothing);
   cmd->add_option("--level-smoothing", args->level_smoothing,
                   "adaptive: thin-plate weight of every level (" +
-                      DefaultText(sa.smoothing, ca.smoothing) + "; " + crease_smoothing +
-                      " for a character's part whose control mesh keeps its creases)")
+                      DefaultText(sa.smoothing, ca.smoothing) +
+                      "; a character's parts on a control mesh that keeps creases take "
+                      "--crease-smoothing)")
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--validation", args->validation,
                   "adaptive: fraction of the points that decides how many levels to keep (" +
@@ -562,6 +564,16 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "triangles; hard edges and flat-shaded triangles stay flat (docs/characters.md)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd->add_option("--crease-smoothing", args->crease_smoothing,
+                  "Characters: thin-plate weight of the levels of a part whose control mesh keeps "
+                  "its creases (docs/characters.md, \"Ripples between the samples\")")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  cmd->add_option("--vertex-weight", args->vertex_weight,
+                  "Characters: weight of each source vertex against one sample in those parts' "
+                  "displacement fit (the bound export's error)")
+      ->check(CLI::Range(1e-3, 1e6))
+      ->capture_default_str();
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
@@ -579,7 +591,8 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         for (const char* name : {"--control-vertices", "--control-mesh", "--holdout"}) {
           if (cmd->count(name) > 0) args->surface_only.push_back(name);
         }
-        for (const char* name : {"--control-ratio", "--shading-shape"}) {
+        for (const char* name :
+             {"--control-ratio", "--shading-shape", "--crease-smoothing", "--vertex-weight"}) {
           if (cmd->count(name) > 0) args->character_only.push_back(name);
         }
         if (args->refit) args->character_only.push_back("--refit");  // --refit=false is fine

@@ -533,6 +533,50 @@ TEST_CASE("fit: .dsurf round trip is bit-exact and threads do not change the byt
   CHECK(ReadDsurf("/nonexistent/dir/x.dsurf", &out).code() == StatusCode::kIoError);
 }
 
+TEST_CASE("fit: a point's weight reaches its own target through the held-out split") {
+  // One fitted point weighs 1e4: the displacement levels pass through it (the others hold
+  // the surface near it), which only works if its weight follows it past the held-out points.
+  const PolygonMesh dense = BumpySphereMesh(20, 10, 0.05);
+  FitOptions options;
+  options.holdout = 0.3;
+  options.control_vertices = 40;
+  options.threads = 2;
+  // The heavy point: an input point after several held-out ones, and its place among the
+  // fitted points.
+  std::size_t heavy = 0, held_before = 0, fitted_index = 0;
+  for (std::size_t i = 0, k = 0; i < dense.positions.size(); ++i) {
+    if (IsHeldOut(i, options.holdout, options.holdout_seed)) {
+      ++held_before;
+      continue;
+    }
+    if (held_before >= 5 && i >= 60) {
+      heavy = i, fitted_index = k;
+      break;
+    }
+    ++k;
+  }
+  REQUIRE(heavy > 0);
+  auto error_at_heavy = [&](double weight) {
+    FitInput input;
+    input.points = dense.positions;
+    input.mesh = &dense;
+    input.weights.assign(dense.positions.size(), 1.0);
+    input.weights[heavy] = weight;
+    FittedSurface fitted;
+    FitReport report;
+    REQUIRE(FitSurface(input, options, &fitted, &report).ok());
+    const PointFit& f = fitted.point_fits[fitted_index];
+    SurfacePoint sp;
+    REQUIRE(EvaluateSurface(*fitted.surface.domain, fitted.surface.patches.data(),
+                            fitted.displacement.get(), f.face, f.uv, &sp));
+    return glm::length(sp.position - dense.positions[heavy]);
+  };
+  const double light = error_at_heavy(1.0), weighted = error_at_heavy(1e4);
+  INFO("input point " << heavy << " (fitted point " << fitted_index << "): |D - p| " << light
+                      << " at weight 1, " << weighted << " at weight 1e4");
+  CHECK(weighted < 0.2 * light);
+}
+
 TEST_CASE("fit: bad inputs give clear errors") {
   FittedSurface fitted;
   FitReport report;

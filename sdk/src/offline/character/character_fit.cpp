@@ -251,23 +251,24 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const std::vector<Vec3>& 
   return out;
 }
 
-/// Whether two triangles of `mesh` that share an edge turn by more than `crease_angle` radians
-/// (the remesher's creases, QuadRemeshOptions::crease_angle_deg).
+/// Whether two triangles of `mesh` that share an edge (in opposite directions, as a consistently
+/// oriented surface's do) turn by at least `crease_angle` radians: the creases the remesher
+/// keeps (CreaseChains, QuadRemeshOptions::crease_angle_deg).
 bool HasCrease(const PolygonMesh& mesh, double crease_angle) {
-  std::map<std::pair<Index, Index>, Vec3> first;
-  const double cos_crease = std::cos(crease_angle);
+  std::map<std::pair<Index, Index>, Vec3> directed;  // edge (from, to) -> its triangle's normal
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
     const Vec3 n = glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
                               mesh.positions[v[2]] - mesh.positions[v[0]]);
     const double ln = glm::length(n);
     if (!(ln > 0.0)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const Index x = v[k], y = v[(k + 1) % 3];
-      const auto [it, inserted] =
-          first.emplace(std::make_pair(std::min(x, y), std::max(x, y)), n / ln);
-      if (!inserted && glm::dot(it->second, n / ln) < cos_crease) return true;
-    }
+    for (int k = 0; k < 3; ++k) directed.emplace(std::make_pair(v[k], v[(k + 1) % 3]), n / ln);
+  }
+  const double cos_crease = std::cos(crease_angle);
+  for (const auto& [edge, n] : directed) {
+    if (edge.first > edge.second) continue;
+    const auto twin = directed.find({edge.second, edge.first});
+    if (twin != directed.end() && glm::dot(n, twin->second) <= cos_crease) return true;
   }
   return false;
 }
@@ -423,16 +424,13 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // mesh follows the component within max_deviation of its diagonal.
   fo.remesh.max_deviation = options.max_deviation;
   fo.remesh.sizing.max_turn = options.max_turn;
-  // On a control mesh that keeps the part's creases: smoother levels, heavier vertices.
-  bool crease_fit = false;
   if (options.remesh_creases) {
     fo.remesh.crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
-    crease_fit = HasCrease(dense, options.crease_angle);
-    if (crease_fit && options.crease_smoothing >= 0.0) {
-      fo.displacement.adaptive.smoothing = options.crease_smoothing;
-    }
   }
   fo.clamp_control_vertices = true;
+  // The fits on control meshes without creases (the plain remesh, the simplification) keep
+  // options.fit's smoothing and every point at weight 1.
+  const FitOptions plain_options = fo;
   FitInput input;
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
   if (options.samples_per_control_edge > 0.0) {
@@ -442,13 +440,22 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
         options.crease_angle, options.crease_samples, options.crease_rows);
     input.points.insert(input.points.end(), extra.begin(), extra.end());
   }
-  if (crease_fit && options.vertex_weight != 1.0) {
-    input.weights.assign(input.points.size(), 1.0);
-    std::fill(input.weights.begin(),
-              input.weights.begin() + static_cast<std::ptrdiff_t>(dense.positions.size()),
-              options.vertex_weight);
-  }
   input.mesh = &dense;
+  FitInput plain_input = input;
+  // On a control mesh that keeps the part's creases: smoother levels, and (when there are
+  // samples between the vertices) heavier vertices.
+  const bool crease_fit = options.remesh_creases && HasCrease(dense, options.crease_angle);
+  if (crease_fit) {
+    if (options.crease_smoothing >= 0.0) {
+      fo.displacement.adaptive.smoothing = options.crease_smoothing;
+    }
+    if (options.vertex_weight != 1.0 && input.points.size() > dense.positions.size()) {
+      input.weights.assign(input.points.size(), 1.0);
+      std::fill(input.weights.begin(),
+                input.weights.begin() + static_cast<std::ptrdiff_t>(dense.positions.size()),
+                options.vertex_weight);
+    }
+  }
   // With the simplification's fit to compare, each fit is half of the component's work.
   const bool compare =
       options.compare_simplified && fo.control_method == ControlMeshMethod::kRemesh;
@@ -463,17 +470,23 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
           st, total > 0 ? share * static_cast<double>(done) / static_cast<double>(total) : 0.0);
     };
   }
-  const Status s = FitSurface(input, fo, fitted, fr);
+  Status s = FitSurface(input, fo, fitted, fr);
   if (!s.ok()) return s.message();
-  if (plain && fr->control_mesh.method == "remesh" &&
-      fr->control_mesh.quality.crease_edges_kept > 0) {
+  const bool kept_creases =
+      fr->control_mesh.method == "remesh" && fr->control_mesh.quality.crease_edges_kept > 0;
+  if (crease_fit && !kept_creases) {
+    // The control mesh kept no crease after all (the remesh fell back, or kept none): fit
+    // again as a part without creases.
+    s = FitSurface(plain_input, plain_options, fitted, fr);
+    if (!s.ok()) return s.message();
+  }
+  if (plain && kept_creases) {
     // Keeping every crease as control edges sharpens low-poly, hard-edged parts but makes
     // denser control meshes that can fit organic parts worse (docs/characters.md, "Creases or
     // not"): fit the plain remesh too and keep the crease-aware one only where its two-sided
     // Hausdorff distance is clearly lower.
-    FitOptions po = fo;
+    FitOptions po = plain_options;
     po.remesh.crease_angle_deg = 0.0;
-    po.displacement.adaptive.smoothing = options.fit.displacement.adaptive.smoothing;
     po.progress = nullptr;
     if (part_progress) {
       po.progress = [&](const char* st, std::size_t done, std::size_t total) {
@@ -485,8 +498,6 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     }
     FittedSurface alt;
     FitReport alt_report;
-    FitInput plain_input = input;
-    plain_input.weights.clear();
     if (FitSurface(plain_input, po, &alt, &alt_report).ok() &&
         !(fr->error.hausdorff < options.crease_margin * alt_report.error.hausdorff)) {
       char note[200];
@@ -504,7 +515,7 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     // The remesh moves the source's crease vertices off its creases; a simplification keeps
     // them. Fit on both and keep the simplification's only where its two-sided Hausdorff
     // distance (E3, level 8 against the component's triangles) is clearly lower.
-    FitOptions so = fo;
+    FitOptions so = plain_options;
     so.control_method = ControlMeshMethod::kSimplify;
     so.progress = nullptr;
     if (part_progress) {
@@ -516,7 +527,7 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     }
     FittedSurface alt;
     FitReport alt_report;
-    if (FitSurface(input, so, &alt, &alt_report).ok() &&
+    if (FitSurface(plain_input, so, &alt, &alt_report).ok() &&
         alt_report.error.hausdorff < options.simplified_margin * fr->error.hausdorff) {
       char note[160];
       std::snprintf(note, sizeof(note),

@@ -53,6 +53,9 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
     if (t.count < 1 || t.count > 4) {
       return Status::InvalidInput("displacement fit: a point has no chart");
     }
+    if (!(t.weight > 0.0) || !std::isfinite(t.weight)) {
+      return Status::InvalidInput("displacement fit: a point's weight is not positive and finite");
+    }
     for (int s = 0; s < t.count; ++s) {
       if (t.chart[s] < 0 || static_cast<std::size_t>(t.chart[s]) >= nc) {
         return Status::InvalidInput("displacement fit: a point's chart is out of range");

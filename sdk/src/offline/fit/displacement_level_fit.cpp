@@ -145,14 +145,16 @@ DisplacementLevelFitter::DisplacementLevelFitter(const std::vector<double>& half
 }
 
 double DisplacementLevelFitter::FitError() const {
-  double sum = 0.0;
-  for (std::uint32_t i : fit_) sum += glm::length(f_[i] - target_[i]);
+  double sum = 0.0;  // f_ and target_ carry sqrt(weight): divided out, |D - p| in model units
+  for (std::uint32_t i : fit_)
+    sum += glm::length(f_[i] - target_[i]) / std::sqrt(targets_[i].weight);
   return fit_.empty() ? 0.0 : sum / static_cast<double>(fit_.size());
 }
 
 double DisplacementLevelFitter::EvalError() const {
   double sum = 0.0;
-  for (std::uint32_t i : eval_) sum += glm::length(f_[i] - target_[i]);
+  for (std::uint32_t i : eval_)
+    sum += glm::length(f_[i] - target_[i]) / std::sqrt(targets_[i].weight);
   return eval_.empty() ? 0.0 : sum / static_cast<double>(eval_.size());
 }
 

@@ -92,10 +92,11 @@ struct CharacterFitOptions {
   /// "Ripples between the samples"). The plain remesh (compare_without_creases) keeps
   /// fit.displacement's: its displacement carries the creases.
   double crease_smoothing = 1e-2;
-  /// With crease_smoothing (the same fits), the weight of each source vertex against one
-  /// sample in the displacement levels' least squares (FitInput::weights): the vertices are
-  /// what the bound export reproduces, the samples only hold the surface between them, and
-  /// heavier vertices keep the bound export's error where it was under the lighter smoothing.
+  /// In the same fits (a control mesh that keeps creases) and when there are samples between
+  /// the vertices, the weight of each source vertex against one sample in the displacement
+  /// levels' least squares (FitInput::weights): the vertices are what the bound export
+  /// reproduces, the samples only hold the surface between them, and heavier vertices keep the
+  /// bound export's error where it was under the lighter smoothing.
   double vertex_weight = 4.0;
   /// With remesh_creases, also fit each component whose control mesh kept creases on the
   /// remesh without them, and keep the crease-aware fit only where its two-sided Hausdorff

@@ -72,7 +72,9 @@ class DisplacementLevelFitter {
   std::int64_t FitLevel(int level, double residual_threshold, std::int64_t max_nodes,
                         int* iterations);
 
-  double FitError() const;   ///< Mean |D - p| over the fitted targets (model units).
+  /// Mean |D - p| over the fitted targets (model units, every point counted once whatever its
+  /// weight; the residual criterion and the budget's ranking use the weighted errors).
+  double FitError() const;
   double EvalError() const;  ///< Mean |D - p| over the evaluated targets (0 if none).
 
   /// The last fitted level's active nodes of chart c: lattice indices (j + 1)(2^k + 3) + (i + 1),
