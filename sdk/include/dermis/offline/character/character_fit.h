@@ -77,9 +77,11 @@ struct CharacterFitOptions {
   /// source's shading normals describe (Phong tessellation, Boubekeur and Alexa 2008, this
   /// shape factor; 0.75 is theirs): a smooth-shaded low-poly mesh is drawn smooth, and samples
   /// on its flat triangles would ask the surface for the facets' kinks, which the displacement
-  /// can only follow with ripples. Hard edges (normals that differ across the edge), flat-shaded
-  /// triangles and primitives without normals keep flat samples; the vertices are fitted as
-  /// they are. 0: flat triangles everywhere (before 2026-12-04).
+  /// can only follow with ripples. The samples on a hard edge (normals that differ across it)
+  /// stay on the straight edge, and flat-shaded triangles and primitives without normals keep
+  /// flat samples; a triangle beside a hard edge keeps its own Phong surface, which meets the
+  /// edge's line only where its corner normals are perpendicular to the edge. The vertices are
+  /// fitted as they are. 0: flat triangles everywhere (before 2026-12-04).
   double shading_shape = 0.0;
   /// The remeshed control mesh keeps the source's creases (dihedral above crease_angle) as
   /// control edges, as it keeps boundaries (QuadRemeshOptions::crease_angle_deg).
