@@ -13,6 +13,8 @@
 #include <map>
 #include <numeric>
 
+#include "dermis/offline/build/crease_chains.h"
+#include "dermis/offline/build/reference_surface.h"
 #include "dermis/offline/character/skin_transfer.h"
 #include "dermis/offline/fit/surface_projection.h"
 #include "dermis/offline/geometry/triangle_distance.h"
@@ -251,26 +253,18 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const std::vector<Vec3>& 
   return out;
 }
 
-/// Whether two triangles of `mesh` that share an edge (in opposite directions, as a consistently
-/// oriented surface's do) turn by at least `crease_angle` radians: the creases the remesher
-/// keeps (CreaseChains, QuadRemeshOptions::crease_angle_deg).
-bool HasCrease(const PolygonMesh& mesh, double crease_angle) {
-  std::map<std::pair<Index, Index>, Vec3> directed;  // edge (from, to) -> its triangle's normal
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
-    const Vec3 n = glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
-                              mesh.positions[v[2]] - mesh.positions[v[0]]);
-    const double ln = glm::length(n);
-    if (!(ln > 0.0)) continue;
-    for (int k = 0; k < 3; ++k) directed.emplace(std::make_pair(v[k], v[(k + 1) % 3]), n / ln);
-  }
-  const double cos_crease = std::cos(crease_angle);
-  for (const auto& [edge, n] : directed) {
-    if (edge.first > edge.second) continue;
-    const auto twin = directed.find({edge.second, edge.first});
-    if (twin != directed.end() && glm::dot(n, twin->second) <= cos_crease) return true;
-  }
-  return false;
+/// Whether the remesher will keep creases on `mesh` (a triangle mesh): CreaseChains, its own
+/// test, at the remesh options' angles. False where the mesh cannot be a reference surface
+/// (the remesh then falls back and keeps none either).
+bool HasCrease(const PolygonMesh& mesh, const QuadRemeshOptions& remesh) {
+  std::vector<std::uint32_t> triangles;
+  triangles.reserve(mesh.face_vertices.size());
+  for (Index v : mesh.face_vertices) triangles.push_back(static_cast<std::uint32_t>(v));
+  ReferenceSurface ref;
+  if (!ref.Build(mesh.positions, triangles, "crease test").ok()) return false;
+  CreaseChains creases;
+  creases.Build(ref, remesh.crease_angle_deg, remesh.corner_turn_deg);
+  return !creases.edges().empty();
 }
 
 double Area(const PolygonMesh& mesh) {
@@ -444,7 +438,7 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   FitInput plain_input = input;
   // On a control mesh that keeps the part's creases: smoother levels, and (when there are
   // samples between the vertices) heavier vertices.
-  const bool crease_fit = options.remesh_creases && HasCrease(dense, options.crease_angle);
+  const bool crease_fit = options.remesh_creases && HasCrease(dense, fo.remesh);
   if (crease_fit) {
     if (options.crease_smoothing >= 0.0) {
       fo.displacement.adaptive.smoothing = options.crease_smoothing;

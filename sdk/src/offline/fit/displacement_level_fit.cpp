@@ -136,7 +136,6 @@ DisplacementLevelFitter::DisplacementLevelFitter(const std::vector<double>& half
       en.psi = glm::length(t.a[s]);
       en.z = t.z[s];
       en.a = std::sqrt(t.weight) * t.a[s];
-      en.w = t.weight;
       point_entries_[4 * p + static_cast<std::size_t>(s)] = e;
     }
   }
@@ -354,7 +353,8 @@ void DisplacementLevelFitter::Prepare() {
         bl.base = static_cast<std::int32_t>(ch.window + j * ch.w + i);
         bl.w = ch.w;
         const Entry& en = entries_[static_cast<std::size_t>(q)];
-        const double a2 = en.w * en.psi * en.psi + opt_.consistency * en.psi;
+        const double w = targets_[fit_[en.point]].weight;  // |en.a|^2 = w psi^2
+        const double a2 = w * en.psi * en.psi + opt_.consistency * en.psi;
         for (int l = 0; l < 4; ++l) {
           for (int k = 0; k < 4; ++k) {
             const double wk = static_cast<double>(bl.bs[k]) * bl.bt[l];

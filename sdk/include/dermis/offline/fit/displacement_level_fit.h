@@ -97,8 +97,7 @@ class DisplacementLevelFitter {
     std::uint32_t point = 0;  // position in fit_
     double psi = 0.0;
     Vec2 z{0.0};
-    Vec3 a{0.0};     // sqrt(weight) psi N: the point's weight folded into its row
-    double w = 1.0;  // the point's weight
+    Vec3 a{0.0};  // sqrt(weight) psi N: the point's weight folded into its row
   };
   // A sample's cell at the current level and, when its 4 x 4 block touches an active node, the
   // block's first position in the window arrays.
