@@ -278,3 +278,40 @@ TEST_CASE("creases: a capped cylinder's rims and a box's edges are control edges
     }
   }
 }
+
+TEST_CASE("creases: edges the input shades smooth are never creases") {
+  // The capped cylinder's bottom rim named smooth (a source shading it soft): only the top rim
+  // is a crease, for the chains and for the remesh, which renumbers nothing (the input is
+  // welded already); either order of an edge's ends names it, and a pair that is no edge of
+  // the input names nothing.
+  const TriMesh m = CappedCylinder(32, 4);
+  std::vector<std::array<std::uint32_t, 2>> smooth;
+  for (std::uint32_t i = 0; i < 32; ++i) {
+    const std::uint32_t a = i, b = (i + 1) % 32;
+    smooth.push_back(i % 2 ? std::array<std::uint32_t, 2>{a, b}
+                           : std::array<std::uint32_t, 2>{b, a});
+  }
+  smooth.push_back({0, 100});  // not an edge
+  ReferenceSurface ref;
+  REQUIRE(ref.Build(m.x, m.t, "cylinder").ok());
+  CreaseChains c;
+  c.Build(ref, 30.0, 50.0, smooth);
+  CHECK(c.edges().size() == 32);
+  REQUIRE(c.num_chains() == 1);
+  for (Index v = 0; v < 32; ++v) {
+    CHECK(c.vertex_feature(v) == kNoFeature);
+    CHECK(c.vertex_feature(128 + v) >= 0);
+  }
+  QuadRemeshOptions options;
+  options.target_vertices = 200;
+  options.crease_angle_deg = 30.0;
+  options.smooth_edges = smooth;
+  PolygonMesh out;
+  QuadRemeshReport r;
+  const Status s = QuadRemesh(m.x, m.t, "cylinder", options, &out, &r);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  CHECK(r.crease_edges == 32);
+  CHECK(r.crease_chains == 1);
+  CHECK(r.crease_edges_kept == 32);
+}

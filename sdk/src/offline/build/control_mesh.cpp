@@ -239,6 +239,14 @@ Status BuildControlMesh(const PolygonMesh& mesh, const ControlMeshOptions& reque
   if (options.method == ControlMeshMethod::kRemesh) {
     QuadRemeshOptions ro = options.remesh;
     ro.target_vertices = options.target_vertices;
+    // The smooth edges in the welded numbering (an index out of range, or an edge the weld
+    // collapsed, names no edge of the welded mesh and is dropped).
+    ro.smooth_edges.clear();
+    for (const auto& e : options.remesh.smooth_edges) {
+      if (e[0] >= nv || e[1] >= nv) continue;
+      const std::uint32_t a = remap[e[0]], b = remap[e[1]];
+      if (a != ~0u && b != ~0u && a != b) ro.smooth_edges.push_back({a, b});
+    }
     PolygonMesh remeshed;
     QuadRemeshReport rr;
     const Status rs = QuadRemesh(x, welded, where, ro, &remeshed, &rr);

@@ -11,7 +11,8 @@
 namespace dermis {
 
 void CreaseChains::Build(const ReferenceSurface& ref, double crease_angle_deg,
-                         double corner_turn_deg) {
+                         double corner_turn_deg,
+                         const std::vector<std::array<std::uint32_t, 2>>& smooth_edges) {
   ref_ = &ref;
   edges_.clear();
   edge_chain_.clear();
@@ -33,6 +34,10 @@ void CreaseChains::Build(const ReferenceSurface& ref, double crease_angle_deg,
     }
   }
   std::sort(directed.begin(), directed.end());
+  std::vector<std::array<std::uint32_t, 2>> smooth;
+  smooth.reserve(smooth_edges.size());
+  for (const auto& e : smooth_edges) smooth.push_back({std::min(e[0], e[1]), std::max(e[0], e[1])});
+  std::sort(smooth.begin(), smooth.end());
   for (const auto& d : directed) {
     if (d[0] > d[1]) continue;
     const auto it = std::lower_bound(directed.begin(), directed.end(),
@@ -41,7 +46,12 @@ void CreaseChains::Build(const ReferenceSurface& ref, double crease_angle_deg,
     const Vec3& n1 = ref.triangle_normal(static_cast<Index>(d[2]));
     const Vec3& n2 = ref.triangle_normal(static_cast<Index>((*it)[2]));
     if (glm::dot(n1, n1) == 0.0 || glm::dot(n2, n2) == 0.0) continue;  // no area, no angle
-    if (glm::dot(n1, n2) <= cos_crease) edges_.push_back({d[0], d[1]});
+    if (glm::dot(n1, n2) > cos_crease) continue;
+    if (std::binary_search(smooth.begin(), smooth.end(),
+                           std::array<std::uint32_t, 2>{d[0], d[1]})) {
+      continue;  // shaded smooth
+    }
+    edges_.push_back({d[0], d[1]});
   }
   std::sort(edges_.begin(), edges_.end());
   edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());

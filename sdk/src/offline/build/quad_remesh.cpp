@@ -279,7 +279,7 @@ Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uin
                                                      (options.max_deviation > 0.0 ? 2.0 : 1.0)));
   RemeshTriangles seed;
   CreaseChains creases;
-  creases.Build(ref, options.crease_angle_deg, options.corner_turn_deg);
+  creases.Build(ref, options.crease_angle_deg, options.corner_turn_deg, options.smooth_edges);
   const CreaseChains* cr = creases.empty() ? nullptr : &creases;
   rep.crease_edges = static_cast<int>(creases.edges().size());
   rep.crease_chains = creases.num_chains();

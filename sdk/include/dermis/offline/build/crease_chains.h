@@ -26,8 +26,11 @@ class CreaseChains {
   /// `crease_angle_deg` apart) and chains them. A corner is a vertex where a number of crease
   /// edges other than 2 meet, where the two crease edges turn by more than `corner_turn_deg`,
   /// or a boundary vertex on a crease; chains run from corner to corner, or are closed loops
-  /// (a cap's rim). crease_angle_deg <= 0 finds none.
-  void Build(const ReferenceSurface& ref, double crease_angle_deg, double corner_turn_deg);
+  /// (a cap's rim). crease_angle_deg <= 0 finds none. The edges in `smooth_edges` (pairs of
+  /// reference vertex indices, either order) are never creases, whatever their angle: the
+  /// input's own shading marks them smooth (QuadRemeshOptions::smooth_edges).
+  void Build(const ReferenceSurface& ref, double crease_angle_deg, double corner_turn_deg,
+             const std::vector<std::array<std::uint32_t, 2>>& smooth_edges = {});
 
   bool empty() const { return chains_.empty(); }
   /// The reference's positions (Build() must have been called).

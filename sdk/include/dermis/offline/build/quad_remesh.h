@@ -5,6 +5,7 @@
 /// relaxation on the surface). docs/fitting.md, "Control mesh".
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -50,6 +51,13 @@ struct QuadRemeshOptions {
   double crease_angle_deg = 0.0;
   /// A crease vertex where its chain turns by more than this (degrees) is a fixed corner.
   double corner_turn_deg = 80.0;
+  /// Edges of the input that are never creases, whatever their dihedral angle: pairs of vertex
+  /// indices into the positions given to QuadRemesh() (either order; BuildControlMesh() takes
+  /// them in its input mesh's indices and renumbers them through its weld). A low-poly
+  /// character shaded smooth across an edge (the same normals on both sides) means the surface
+  /// round there; its facets' kinks are how few triangles approximate it (docs/characters.md,
+  /// "Smooth-shaded edges are not creases").
+  std::vector<std::array<std::uint32_t, 2>> smooth_edges;
 };
 
 /// Quality of a quad remesh (written to the fit report).
