@@ -1,0 +1,116 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Phong tessellation (Boubekeur and Alexa 2008, "Phong Tessellation", ACM TOG 27(5), Eq. 2-3)
+// of a character's source mesh with its own shading normals; hard and boundary edges stay
+// straight, so that it has no cracks (docs/characters.md).
+#include "dermis/offline/geometry/shading_surface.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace dermis {
+
+void ShadingSurface::Build(const PolygonMesh& mesh, const std::vector<Vec3>& corner_normals,
+                           double shape, double max_move) {
+  mesh_ = &mesh;
+  shape_ = shape;
+  curved_ = false;
+  capped_ = 0;
+  const std::size_t nf = static_cast<std::size_t>(mesh.num_faces());
+  normals_.assign(3 * nf, Vec3(0.0));
+  shaded_.assign(nf, 0);
+  hard_.assign(3 * nf, 1);
+  scale_.assign(3 * nf, 0.0);
+  smooth_edges_.clear();
+  if (corner_normals.size() != 3 * nf) return;
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (mesh.face_size(static_cast<Index>(f)) != 3) continue;
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
+    const Vec3 n = glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
+                              mesh.positions[v[2]] - mesh.positions[v[0]]);
+    const double ln = glm::length(n);
+    if (!(ln > 0.0)) continue;
+    bool all = true;
+    for (std::size_t k = 0; k < 3 && all; ++k) {
+      const Vec3& cn = corner_normals[3 * f + k];
+      const double lc = glm::length(cn);
+      all = lc > 0.0 && std::isfinite(lc);
+      normals_[3 * f + k] = all ? cn / lc : Vec3(0.0);
+    }
+    shaded_[f] = all ? 1 : 0;
+    if (!all) std::fill(normals_.begin() + 3 * f, normals_.begin() + 3 * f + 3, Vec3(0.0));
+  }
+  // (a, b, face, corner opposite) per face edge, a < b: an edge is curved where exactly two
+  // shaded faces meet with the same normals at both of its ends.
+  std::vector<std::array<std::uint32_t, 4>> half;
+  half.reserve(3 * nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (!shaded_[f]) continue;
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t a = static_cast<std::uint32_t>(v[(k + 1) % 3]);
+      const std::uint32_t b = static_cast<std::uint32_t>(v[(k + 2) % 3]);
+      half.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(f), k});
+    }
+  }
+  std::sort(half.begin(), half.end());
+  auto normal_at = [&](std::uint32_t f, std::uint32_t vertex) {
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
+    std::size_t k = 0;
+    while (k < 2 && static_cast<std::uint32_t>(v[k]) != vertex) ++k;
+    return normals_[3 * std::size_t{f} + k];
+  };
+  for (std::size_t i = 0; i < half.size();) {
+    std::size_t j = i + 1;
+    while (j < half.size() && half[j][0] == half[i][0] && half[j][1] == half[i][1]) ++j;
+    if (j == i + 2) {
+      const std::uint32_t f0 = half[i][2], f1 = half[i + 1][2];
+      const bool smooth =
+          glm::length(normal_at(f0, half[i][0]) - normal_at(f1, half[i][0])) < 1e-6 &&
+          glm::length(normal_at(f0, half[i][1]) - normal_at(f1, half[i][1])) < 1e-6;
+      if (smooth) smooth_edges_.push_back({half[i][0], half[i][1]});
+      if (smooth && shape > 0.0) {
+        // The term at the edge's midpoint (w_k = w_l = 1/2), times the shape factor.
+        const Vec3 &xa = mesh.positions[half[i][0]], &xb = mesh.positions[half[i][1]];
+        const Vec3 &na = normal_at(f0, half[i][0]), &nb = normal_at(f0, half[i][1]);
+        const double peak =
+            0.25 * shape * glm::length(glm::dot(xb - xa, na) * na + glm::dot(xa - xb, nb) * nb);
+        double scale = 1.0;
+        if (max_move > 0.0 && peak > max_move) {
+          scale = max_move / peak;
+          ++capped_;
+        }
+        hard_[3 * std::size_t{f0} + half[i][3]] = 0;
+        hard_[3 * std::size_t{f1} + half[i + 1][3]] = 0;
+        scale_[3 * std::size_t{f0} + half[i][3]] = scale;
+        scale_[3 * std::size_t{f1} + half[i + 1][3]] = scale;
+        if (peak > 0.0) curved_ = true;
+      }
+    }
+    i = j;
+  }
+}
+
+Vec3 ShadingSurface::Point(Index f, const double w[3]) const {
+  const Index* v = &mesh_->face_vertices[mesh_->face_offsets[f]];
+  const std::size_t fi = static_cast<std::size_t>(f);
+  Vec3 p(0.0);
+  const int n = std::min(3, static_cast<int>(mesh_->face_size(f)));
+  for (int k = 0; k < n; ++k) p += w[k] * mesh_->positions[v[k]];
+  if (!curved_ || !shaded_[fi]) return p;
+  // Phong's point minus the flat one is a sum over the edges (k, l) of w_k w_l times a term of
+  // that edge's ends alone: -((x_l - x_k).n_k) n_k - ((x_k - x_l).n_l) n_l. A hard edge's term
+  // is left out, so that edge stays straight and the faces on either side meet.
+  Vec3 move(0.0);
+  for (std::size_t c = 0; c < 3; ++c) {
+    if (hard_[3 * fi + c]) continue;
+    const std::size_t k = (c + 1) % 3, l = (c + 2) % 3;
+    const Vec3 &xk = mesh_->positions[v[k]], &xl = mesh_->positions[v[l]];
+    const Vec3 &nk = normals_[3 * fi + k], &nl = normals_[3 * fi + l];
+    move -= scale_[3 * fi + c] * w[k] * w[l] *
+            (glm::dot(xl - xk, nk) * nk + glm::dot(xk - xl, nl) * nl);
+  }
+  return p + shape_ * move;
+}
+
+}  // namespace dermis
