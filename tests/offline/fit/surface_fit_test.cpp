@@ -488,6 +488,39 @@ TEST_CASE("fit: a control-mesh target equal to the full split keeps every triang
   }
 }
 
+TEST_CASE("fit: place_control_vertices moves the built control mesh's vertices") {
+  // The bumpy sphere's control mesh lies on the bumps; a hook that puts every control vertex
+  // on the unit sphere is what the domain surface is built from. A hook that changes the
+  // faces is refused; a given control mesh is used as it is, without the hook.
+  const PolygonMesh dense = BumpySphereMesh(60, 30, 0.05);
+  FitInput input;
+  input.points = dense.positions;
+  input.mesh = &dense;
+  FitOptions options;
+  options.control_vertices = 60;
+  options.control_fit_iterations = 0;  // the control-vertex fit would move them again
+  int calls = 0;
+  options.place_control_vertices = [&](PolygonMesh* control) {
+    ++calls;
+    for (Vec3& x : control->positions) x = glm::normalize(x);
+  };
+  FittedSurface fitted;
+  FitReport report;
+  REQUIRE(FitSurface(input, options, &fitted, &report).ok());
+  CHECK(calls == 1);
+  for (const Vec3& x : fitted.control_mesh.positions) CHECK(glm::length(x) == Approx(1.0));
+  for (const Vec3& x : fitted.surface.control.positions) CHECK(glm::length(x) == Approx(1.0));
+  FitInput given = input;
+  given.control = &fitted.control_mesh;
+  FittedSurface again;
+  REQUIRE(FitSurface(given, options, &again, &report).ok());
+  CHECK(calls == 1);
+  options.place_control_vertices = [](PolygonMesh* control) { control->AddFace({0, 1, 2}); };
+  const Status s = FitSurface(input, options, &again, &report);
+  CHECK(s.code() == StatusCode::kInternal);
+  CHECK(s.message().find("changed the faces") != std::string::npos);
+}
+
 TEST_CASE("fit: .dsurf round trip is bit-exact and threads do not change the bytes") {
   const PolygonMesh dense = BumpySphereMesh(60, 30, 0.05);
   FitInput input;

@@ -157,6 +157,13 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     cm.remesh = options.remesh;
     Status s = BuildControlMesh(*input.mesh, cm, &fitted.control_mesh, &rep.control_mesh);
     if (!s.ok()) return s;
+    if (options.place_control_vertices) {
+      const std::size_t faces = fitted.control_mesh.face_vertices.size();
+      options.place_control_vertices(&fitted.control_mesh);
+      if (fitted.control_mesh.face_vertices.size() != faces) {
+        return Status::Internal(where + ": placing the control vertices changed the faces");
+      }
+    }
   }
   Status s = BuildControlSurface(fitted.control_mesh, options.domain, &fitted.surface);
   if (!s.ok()) return s;

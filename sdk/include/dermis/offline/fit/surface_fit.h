@@ -59,6 +59,10 @@ struct FitOptions {
   /// what it measured to cost per point (docs/fitting.md, "Progress"). The total is fixed at
   /// the start, so done / total is the fit's fraction; a stage that is skipped is jumped.
   ProgressCallback progress;
+  /// Called on a control mesh built from the data (not a given one) before its domain surface
+  /// is made; may move its vertices, not change its faces. Empty: none. A character part shaded
+  /// smooth moves them onto its shading surface (CharacterFitOptions::smooth_part_shape).
+  std::function<void(PolygonMesh* control)> place_control_vertices;
 };
 
 /// What to fit.
