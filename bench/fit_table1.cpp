@@ -28,8 +28,10 @@
 //                             [--level-smoothing S] (the levels' smoothing; characters' parts
 //                             on a control mesh without creases)
 //                             [--crease-smoothing S] (characters' parts on a crease-kept mesh)
-//                             [--shading-shape A] (characters' samples on the Phong surface)
+//                             [--shading-shape A] (characters' shading surface, 0: flat)
+//                             [--shading-max-move M] (its largest move, of the diagonal)
 //                             [--vertex-weight W] (characters' vertices against one sample)
+//                             [--creases-ignore-shading] (smooth-shaded sharp edges are creases)
 //                             [--detail] [--mba]
 // --density, --finest-passes and --smoothing set the paper's per-chart MBA (--mba); the default
 // displacement fit is the adaptive one (docs/fitting.md, "Adaptive displacement levels").
@@ -191,8 +193,9 @@ struct Settings {
   bool detail = false, mba = false;
   bool where = false;             ///< --where: the largest character distances and what is there.
   bool no_crease_remesh = false;  ///< --no-crease-remesh: the remesh ignores creases.
-  int compare_without_creases = -1;  ///< --compare-without-creases 0|1 (-1: the default).
-  int compare_simplified = -1;       ///< --compare-simplified 0|1 (-1: the default).
+  bool creases_ignore_shading = false;  ///< --creases-ignore-shading: smooth-shaded creases too.
+  int compare_without_creases = -1;     ///< --compare-without-creases 0|1 (-1: the default).
+  int compare_simplified = -1;          ///< --compare-simplified 0|1 (-1: the default).
   ControlMeshMethod method = ControlMeshMethod::kRemesh;
   double density = -1.0;           // -1: FitOptions' default
   int control_fit = -1;            // -1: FitOptions' default
@@ -216,6 +219,7 @@ struct Settings {
   double level_smoothing = -1.0;   // -1: the adaptive fit's default
   double crease_smoothing = -1.0;  // -1: CharacterFitOptions' default
   double shading_shape = -1.0;     // -1: CharacterFitOptions' default
+  double shading_max_move = -1.0;  // -1: CharacterFitOptions' default
   double vertex_weight = -1.0;     // -1: CharacterFitOptions' default
   bool Row(const char* name) const { return rows.find(name) != std::string::npos; }
 };
@@ -760,6 +764,7 @@ int RunCharacters(const Settings& st) {
     ApplySettings(st, &options.fit);
     if (st.crease_smoothing >= 0.0) options.crease_smoothing = st.crease_smoothing;
     if (st.shading_shape >= 0.0) options.shading_shape = st.shading_shape;
+    if (st.shading_max_move >= 0.0) options.shading_max_move = st.shading_max_move;
     if (st.vertex_weight > 0.0) options.vertex_weight = st.vertex_weight;
     if (st.samples >= 0.0) options.samples_per_control_edge = st.samples;
     if (st.crease_samples >= 0.0) options.crease_samples = st.crease_samples;
@@ -767,6 +772,7 @@ int RunCharacters(const Settings& st) {
     if (st.crease_angle >= 0.0) options.crease_angle = st.crease_angle;
     if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
     if (st.no_crease_remesh) options.remesh_creases = false;
+    if (st.creases_ignore_shading) options.creases_follow_shading = false;
     if (st.compare_without_creases >= 0)
       options.compare_without_creases = st.compare_without_creases != 0;
     if (st.compare_simplified >= 0) options.compare_simplified = st.compare_simplified != 0;
@@ -926,6 +932,8 @@ int main(int argc, char** argv) {
       st.level_smoothing = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--crease-smoothing") == 0 && i + 1 < argc) {
       st.crease_smoothing = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--shading-max-move") == 0 && i + 1 < argc) {
+      st.shading_max_move = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--shading-shape") == 0 && i + 1 < argc) {
       st.shading_shape = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--vertex-weight") == 0 && i + 1 < argc) {
@@ -946,6 +954,8 @@ int main(int argc, char** argv) {
       st.compare_without_creases = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--no-crease-remesh") == 0) {
       st.no_crease_remesh = true;
+    } else if (std::strcmp(argv[i], "--creases-ignore-shading") == 0) {
+      st.creases_ignore_shading = true;
     } else if (std::strcmp(argv[i], "--compare-simplified") == 0 && i + 1 < argc) {
       st.compare_simplified = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--where") == 0) {

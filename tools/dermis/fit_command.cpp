@@ -54,8 +54,10 @@ struct FitArgs {
   bool quiet = false;
   double control_ratio = CharacterFitOptions{}.vertex_ratio;
   double shading_shape = CharacterFitOptions{}.shading_shape;
+  double shading_max_move = CharacterFitOptions{}.shading_max_move;
   double crease_smoothing = CharacterFitOptions{}.crease_smoothing;
   double vertex_weight = CharacterFitOptions{}.vertex_weight;
+  bool creases_ignore_shading = false;
   bool refit = false;
   // Options given on the command line that only one kind of input takes (set at parse time):
   // a fit of the other kind refuses them instead of ignoring them.
@@ -233,8 +235,10 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   for (const char* key : {"control-vertices", "holdout"}) options_json.erase(key);
   options_json["control-ratio"] = options.vertex_ratio;
   options_json["shading-shape"] = options.shading_shape;
+  options_json["shading-max-move"] = options.shading_max_move;
   options_json["crease-smoothing"] = options.crease_smoothing;
   options_json["vertex-weight"] = options.vertex_weight;
+  options_json["creases-ignore-shading"] = !options.creases_follow_shading;
   options_json["refit"] = a.refit;
   Json j;
   StartReport(&j, "dermis.fit-character/1", std::move(options_json));
@@ -291,8 +295,10 @@ int RunFitCharacter(const FitArgs& a) {
   CharacterFitOptions options;
   options.vertex_ratio = a.control_ratio;
   options.shading_shape = a.shading_shape;
+  options.shading_max_move = a.shading_max_move;
   options.crease_smoothing = a.crease_smoothing;
   options.vertex_weight = a.vertex_weight;
+  options.creases_follow_shading = !a.creases_ignore_shading;
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit.patch_agreement = a.patch_agreement;
@@ -485,8 +491,8 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--level-smoothing", args->level_smoothing,
                   "adaptive: thin-plate weight of every level (" +
                       DefaultText(sa.smoothing, ca.smoothing) +
-                      "; a character's parts on a control mesh that keeps creases take "
-                      "--crease-smoothing)")
+                      "; a character's parts on a control mesh that keeps creases, or whose "
+                      "sharp edges are all shaded smooth, take --crease-smoothing)")
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--validation", args->validation,
                   "adaptive: fraction of the points that decides how many levels to keep (" +
@@ -559,14 +565,21 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
       ->check(CLI::Range(0.01, 1.0))
       ->capture_default_str();
   cmd->add_option("--shading-shape", args->shading_shape,
-                  "Characters: data samples on the surface the source's shading normals describe "
-                  "(Phong tessellation with this shape factor, e.g. 0.75) instead of its flat "
-                  "triangles; hard edges and flat-shaded triangles stay flat (docs/characters.md)")
+                  "Characters: the surface the fit follows between the source's vertices is "
+                  "the Phong tessellation of its shading normals with this shape factor (0: "
+                  "the flat triangles): the samples and the control vertices lie on it; hard "
+                  "edges and flat-shaded triangles stay flat (docs/characters.md)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--shading-max-move", args->shading_max_move,
+                  "Characters: the most that surface departs from the flat triangles at one "
+                  "edge, as a fraction of the part's bounding-box diagonal (0: no limit)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--crease-smoothing", args->crease_smoothing,
                   "Characters: thin-plate weight of the levels of a part whose control mesh keeps "
-                  "its creases (docs/characters.md, \"Ripples between the samples\")")
+                  "its creases, or whose sharp edges are all shaded smooth (docs/characters.md, "
+                  "\"Ripples between the samples\")")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
   cmd->add_option("--vertex-weight", args->vertex_weight,
@@ -574,6 +587,10 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "displacement fit (the bound export's error)")
       ->check(CLI::Range(1e-3, 1e6))
       ->capture_default_str();
+  cmd->add_flag("--creases-ignore-shading", args->creases_ignore_shading,
+                "Characters: every edge sharper than the crease angle is a crease, even where the "
+                "source shades it smooth (by default such an edge is rounded as its renderer "
+                "draws it; docs/characters.md, \"Smooth-shaded edges are not creases\")");
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
@@ -591,11 +608,14 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         for (const char* name : {"--control-vertices", "--control-mesh", "--holdout"}) {
           if (cmd->count(name) > 0) args->surface_only.push_back(name);
         }
-        for (const char* name :
-             {"--control-ratio", "--shading-shape", "--crease-smoothing", "--vertex-weight"}) {
+        for (const char* name : {"--control-ratio", "--shading-shape", "--shading-max-move",
+                                 "--crease-smoothing", "--vertex-weight"}) {
           if (cmd->count(name) > 0) args->character_only.push_back(name);
         }
         if (args->refit) args->character_only.push_back("--refit");  // --refit=false is fine
+        if (args->creases_ignore_shading) {
+          args->character_only.push_back("--creases-ignore-shading");
+        }
         for (const char* name : {"--control-vertices", "--control-fit", "--patch-agreement"}) {
           if (cmd->count(name) > 0) args->automatic_only.push_back(name);
         }

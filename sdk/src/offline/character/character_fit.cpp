@@ -17,6 +17,7 @@
 #include "dermis/offline/build/reference_surface.h"
 #include "dermis/offline/character/skin_transfer.h"
 #include "dermis/offline/fit/surface_projection.h"
+#include "dermis/offline/geometry/shading_surface.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/surface/surface_evaluator.h"
 
@@ -106,15 +107,14 @@ VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalP
 /// follow it (docs/characters.md, "Where the distances are"). With `crease_rows`, rows of
 /// points beside those edges fill the gap to the grid of a large triangle (below).
 ///
-/// With `shape` > 0 and the source's shading normals (`corner_normals`, 3 per face, unit; 0
-/// where it has none) the points lie on the surface those normals shade rather than on the flat
-/// triangles: Phong tessellation (Boubekeur and Alexa 2008, shape factor `shape`), which
-/// passes through the vertices and, along an edge whose two triangles share its ends' normals,
-/// is the same curve from both sides. An edge whose normals differ across it (a hard edge) and
-/// a triangle without normals keep straight, flat samples.
-std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const std::vector<Vec3>& corner_normals,
-                              double shape, double spacing, double crease_angle,
-                              double crease_factor, bool crease_rows) {
+/// An edge in `smooth_edges` (sorted (a, b), a < b) is never sharp: the source shades it smooth.
+///
+/// The points lie on `shading` (the flat triangles where its shape factor is 0): the surface
+/// the source's shading normals describe, which keeps hard edges straight.
+std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& shading,
+                              const std::vector<std::array<std::uint32_t, 2>>& smooth_edges,
+                              double spacing, double crease_angle, double crease_factor,
+                              bool crease_rows) {
   std::vector<Vec3> out;
   if (!(spacing > 0.0)) return out;
   const std::size_t nf = static_cast<std::size_t>(mesh.num_faces());
@@ -122,11 +122,6 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const std::vector<Vec3>& 
   // Segments per edge of each triangle's grid of samples (0: too small for a grid).
   std::vector<int> grid(nf, 0);
   std::map<std::pair<Index, Index>, std::vector<Index>> edges;
-  // Whether each face has shading normals for the Phong surface, and those normals: a corner
-  // normal further than the crease angle from its triangle's (a box shaded smooth, whose
-  // silhouette a renderer keeps) is replaced by the triangle's.
-  std::vector<char> shaded(nf, 0);
-  std::vector<Vec3> shading(corner_normals.size() == 3 * nf ? 3 * nf : 0);
   const double cos_crease = std::cos(crease_angle);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     const std::size_t fi = static_cast<std::size_t>(f);
@@ -139,28 +134,10 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const std::vector<Vec3>& 
       const Index x = v[k], y = v[(k + 1) % 3];
       edges[{std::min(x, y), std::max(x, y)}].push_back(f);
     }
-    if (shape > 0.0 && !shading.empty() && ln > 0.0) {
-      for (int k = 0; k < 3; ++k) {
-        const Vec3& cn = corner_normals[3 * fi + static_cast<std::size_t>(k)];
-        if (glm::dot(cn, cn) == 0.0) break;  // the primitive has no normals
-        shading[3 * fi + static_cast<std::size_t>(k)] =
-            glm::dot(cn, normal[fi]) >= cos_crease ? cn : normal[fi];
-        if (k == 2) shaded[fi] = 1;
-      }
-    }
   }
   // The point at barycentric weights w of face f (w[k] for its k-th corner).
   auto at = [&](std::size_t f, const double w[3]) {
-    const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
-    Vec3 p(0.0);
-    for (int k = 0; k < 3; ++k) p += w[k] * mesh.positions[v[k]];
-    if (!shaded[f]) return p;
-    Vec3 q(0.0);
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& n = shading[3 * f + static_cast<std::size_t>(k)];
-      q += w[k] * (p - glm::dot(p - mesh.positions[v[k]], n) * n);
-    }
-    return (1.0 - shape) * p + shape * q;
+    return shading.Point(static_cast<Index>(f), w);
   };
   auto corner = [&](Index f, Index vertex) {
     const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
@@ -188,34 +165,24 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const std::vector<Vec3>& 
     bool sharp = e.second.size() != 2;
     if (!sharp) {
       sharp = glm::dot(normal[static_cast<std::size_t>(e.second[0])],
-                       normal[static_cast<std::size_t>(e.second[1])]) < cos_crease;
+                       normal[static_cast<std::size_t>(e.second[1])]) < cos_crease &&
+              !std::binary_search(
+                  smooth_edges.begin(), smooth_edges.end(),
+                  std::array<std::uint32_t, 2>{static_cast<std::uint32_t>(e.first.first),
+                                               static_cast<std::uint32_t>(e.first.second)});
     }
     const Vec3 &a = mesh.positions[e.first.first], &b = mesh.positions[e.first.second];
     const double h = sharp ? spacing / std::max(1.0, crease_factor) : spacing;
     const int n_edge = std::min(128, static_cast<int>(std::ceil(glm::length(b - a) / h)));
-    // The edge's curve where both triangles shade it alike (the same normals at its ends);
-    // straight otherwise.
+    // On the shading surface, which keeps a hard edge straight and curves a smooth one alike
+    // from both sides.
     const std::size_t f0 = static_cast<std::size_t>(e.second[0]);
     const int ka = corner(e.second[0], e.first.first), kb = corner(e.second[0], e.first.second);
-    bool curved =
-        e.second.size() == 2 && shaded[f0] && shaded[static_cast<std::size_t>(e.second[1])];
-    if (curved) {
-      const std::size_t f1 = static_cast<std::size_t>(e.second[1]);
-      const int ja = corner(e.second[1], e.first.first), jb = corner(e.second[1], e.first.second);
-      curved = glm::length(shading[3 * f0 + static_cast<std::size_t>(ka)] -
-                           shading[3 * f1 + static_cast<std::size_t>(ja)]) < 1e-6 &&
-               glm::length(shading[3 * f0 + static_cast<std::size_t>(kb)] -
-                           shading[3 * f1 + static_cast<std::size_t>(jb)]) < 1e-6;
-    }
     for (int i = 1; i < n_edge; ++i) {
       const double s = double(i) / n_edge;
-      if (curved) {
-        double w[3] = {0.0, 0.0, 0.0};
-        w[ka] = 1.0 - s, w[kb] = s;
-        out.push_back(at(f0, w));
-      } else {
-        out.push_back((1.0 - s) * a + s * b);
-      }
+      double w[3] = {0.0, 0.0, 0.0};
+      w[ka] = 1.0 - s, w[kb] = s;
+      out.push_back(at(f0, w));
     }
     if (!sharp || !crease_rows || crease_factor <= 1.0) continue;
     // The grid inside a large triangle (above) starts one grid row, height / n_grid, away from
@@ -263,8 +230,16 @@ bool HasCrease(const PolygonMesh& mesh, const QuadRemeshOptions& remesh) {
   ReferenceSurface ref;
   if (!ref.Build(mesh.positions, triangles, "crease test").ok()) return false;
   CreaseChains creases;
-  creases.Build(ref, remesh.crease_angle_deg, remesh.corner_turn_deg);
+  creases.Build(ref, remesh.crease_angle_deg, remesh.corner_turn_deg, remesh.smooth_edges);
   return !creases.edges().empty();
+}
+
+/// The length of the bounding box's diagonal of `x` (0 if empty).
+double Diagonal(const std::vector<Vec3>& x) {
+  if (x.empty()) return 0.0;
+  Vec3 lo = x[0], hi = x[0];
+  for (const Vec3& p : x) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  return glm::length(hi - lo);
 }
 
 double Area(const PolygonMesh& mesh) {
@@ -418,10 +393,40 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // mesh follows the component within max_deviation of its diagonal.
   fo.remesh.max_deviation = options.max_deviation;
   fo.remesh.sizing.max_turn = options.max_turn;
+  // The part follows its shading surface (CharacterFitOptions::shading_shape), and the edges
+  // the source shades smooth are neither creases of the control mesh nor sharp edges of the
+  // samples (creases_follow_shading).
+  ShadingSurface shading;
+  shading.Build(dense, corner_normals, options.shading_shape,
+                options.shading_max_move * Diagonal(dense.positions));
+  const std::vector<std::array<std::uint32_t, 2>> no_edges;
+  const std::vector<std::array<std::uint32_t, 2>>& smooth_edges =
+      options.creases_follow_shading ? shading.smooth_edges() : no_edges;
+  // Whether the part turns sharply anywhere, shaded smooth or not.
+  bool sharp_part = false;
   if (options.remesh_creases) {
     fo.remesh.crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
+    sharp_part = HasCrease(dense, fo.remesh);
+    fo.remesh.smooth_edges = smooth_edges;
   }
   fo.clamp_control_vertices = true;
+  // Every fit of the part follows its shading surface: the samples between the vertices lie
+  // on it, and the control vertices are moved onto it from the flat triangles where the
+  // control mesh put them (the domain surface interpolates them, and would keep the facets).
+  TriangleDistanceTree tree;
+  if (shading.curved()) {
+    std::vector<std::uint32_t> triangles(dense.face_vertices.begin(), dense.face_vertices.end());
+    if (tree.Build(dense.positions, triangles)) {
+      fo.place_control_vertices = [&](PolygonMesh* control) {
+        for (Vec3& x : control->positions) {
+          const ClosestPoint cp = tree.Query(x);
+          if (cp.triangle == kInvalidIndex) continue;
+          const double w[3] = {cp.barycentric.x, cp.barycentric.y, cp.barycentric.z};
+          x = shading.Point(cp.triangle, w);
+        }
+      };
+    }
+  }
   // The fits on control meshes without creases (the plain remesh, the simplification) keep
   // options.fit's smoothing and every point at weight 1.
   const FitOptions plain_options = fo;
@@ -429,17 +434,20 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
   if (options.samples_per_control_edge > 0.0) {
     const double edge = std::sqrt(Area(dense) / fo.control_vertices);
-    const std::vector<Vec3> extra = AreaSamples(
-        dense, corner_normals, options.shading_shape, edge / options.samples_per_control_edge,
-        options.crease_angle, options.crease_samples, options.crease_rows);
+    const std::vector<Vec3> extra =
+        AreaSamples(dense, shading, smooth_edges, edge / options.samples_per_control_edge,
+                    options.crease_angle, options.crease_samples, options.crease_rows);
     input.points.insert(input.points.end(), extra.begin(), extra.end());
   }
   input.mesh = &dense;
   FitInput plain_input = input;
   // On a control mesh that keeps the part's creases: smoother levels, and (when there are
-  // samples between the vertices) heavier vertices.
-  const bool crease_fit = options.remesh_creases && HasCrease(dense, fo.remesh);
-  if (crease_fit) {
+  // samples between the vertices) heavier vertices. The same where every sharp edge of the
+  // part is shaded smooth: no crease is left for the displacement to carry, and its facets'
+  // kinks are to be rounded, as its renderer draws them, not followed.
+  const bool crease_fit = sharp_part && HasCrease(dense, fo.remesh);
+  const bool smooth_shaded = sharp_part && !crease_fit;
+  if (crease_fit || smooth_shaded) {
     if (options.crease_smoothing >= 0.0) {
       fo.displacement.adaptive.smoothing = options.crease_smoothing;
     }

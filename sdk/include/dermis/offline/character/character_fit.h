@@ -73,33 +73,53 @@ struct CharacterFitOptions {
   /// the samples are crease_samples times as dense across a crease as along the grid (the
   /// finest displacement levels otherwise overshoot the crease in that gap).
   bool crease_rows = true;
-  /// The samples inside the triangles and along their smooth edges lie on the surface the
-  /// source's shading normals describe (Phong tessellation, Boubekeur and Alexa 2008, this
-  /// shape factor; 0.75 is theirs): a smooth-shaded low-poly mesh is drawn smooth, and samples
-  /// on its flat triangles would ask the surface for the facets' kinks, which the displacement
-  /// can only follow with ripples. The samples on a hard edge (normals that differ across it)
-  /// stay on the straight edge, and flat-shaded triangles and primitives without normals keep
-  /// flat samples; a triangle beside a hard edge keeps its own Phong surface, which meets the
-  /// edge's line only where its corner normals are perpendicular to the edge. The vertices are
-  /// fitted as they are. 0: flat triangles everywhere (before 2026-12-04).
-  double shading_shape = 0.0;
+  /// Each part follows the surface its source's shading normals describe (ShadingSurface:
+  /// Phong tessellation, Boubekeur and Alexa 2008, with this shape factor) rather than its flat
+  /// triangles: the samples between the vertices lie on it, and the control vertices are moved
+  /// onto it from the triangles where the control mesh put them. A smooth-shaded low-poly mesh
+  /// is drawn smooth; samples and control vertices on its facets ask the surface for the
+  /// facets' kinks, which the domain surface and the displacement can only follow with ripples
+  /// (docs/characters.md, "Smooth-shaded parts follow their shading"). Hard edges (normals that
+  /// differ across them), boundaries, flat-shaded triangles and primitives without normals stay
+  /// straight and flat. The vertices are fitted as they are. 0.5 puts the middle of an edge
+  /// whose normals turn evenly on the circle through its ends (to first order; Boubekeur and
+  /// Alexa's 0.75 bulges past it); 0: the flat triangles.
+  double shading_shape = 0.5;
+  /// The most the shading surface departs from the flat triangles at one edge (its term at the
+  /// edge's midpoint), as a fraction of the part's bounding-box diagonal, a third of the 0.75 %
+  /// the issue allows: long triangles whose normals lean (RiggedFigure's limbs, 14 % of its
+  /// diagonal) would otherwise bulge past the source's silhouette (0.89 % uncapped), while a
+  /// limb a few percent of the diagonal across keeps its full rounding. 0: no limit.
+  double shading_max_move = 0.0025;
   /// The remeshed control mesh keeps the source's creases (dihedral above crease_angle) as
   /// control edges, as it keeps boundaries (QuadRemeshOptions::crease_angle_deg).
   bool remesh_creases = true;
+  /// A sharp edge (dihedral above crease_angle) that the source shades smooth (its two
+  /// triangles carry the same NORMAL at each of its ends) is not a crease: neither a control
+  /// edge (QuadRemeshOptions::smooth_edges) nor an edge with crease_samples; a part whose sharp
+  /// edges are all shaded smooth gets crease_smoothing and vertex_weight, so its facets' kinks
+  /// are rounded, as its renderer draws them, instead of followed with ripples. A hard edge
+  /// (normals split across it) and a primitive without normals keep their creases
+  /// (docs/characters.md, "Smooth-shaded edges are not creases"). false: every sharp edge is a
+  /// crease (before 2026-12-04's seventh session).
+  bool creases_follow_shading = true;
   /// The displacement levels' thin-plate weight (AdaptiveDisplacementOptions::smoothing) on a
-  /// control mesh that keeps creases, for a part that has some; < 0: fit.displacement's. There
+  /// control mesh that keeps creases, for a part that has some, and on a part whose sharp edges
+  /// are all shaded smooth (creases_follow_shading); < 0: fit.displacement's. There
   /// the creases lie on control edges and the displacement need not carry them, and with the
   /// light smoothing of fit.displacement the finest levels ripple between the samples (a few
   /// per control edge), which the shading shows though no distance does (docs/characters.md,
   /// "Ripples between the samples"). The plain remesh (compare_without_creases) keeps
   /// fit.displacement's: its displacement carries the creases.
   double crease_smoothing = 1e-2;
-  /// In the same fits (a control mesh that keeps creases) and when there are samples between
-  /// the vertices, the weight of each source vertex against one sample in the displacement
-  /// levels' least squares (FitInput::weights): the vertices are what the bound export
-  /// reproduces, the samples only hold the surface between them, and heavier vertices keep the
-  /// bound export's error where it was under the lighter smoothing.
-  double vertex_weight = 4.0;
+  /// In the same fits (a control mesh that keeps creases, or a part whose sharp edges are all
+  /// shaded smooth) and when there are samples between the vertices, the weight of each source
+  /// vertex against one sample in the displacement levels' least squares (FitInput::weights):
+  /// the vertices are what the bound export reproduces, the samples only hold the surface
+  /// between them, and heavier vertices keep the bound export's error where it was under the
+  /// lighter smoothing. 8 since the samples lie on the shading surface, which passes through
+  /// the vertices (4 before).
+  double vertex_weight = 8.0;
   /// With remesh_creases, also fit each component whose control mesh kept creases on the
   /// remesh without them, and keep the crease-aware fit only where its two-sided Hausdorff
   /// distance is below crease_margin times the other's: creases sharpen low-poly, hard-edged
