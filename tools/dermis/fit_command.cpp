@@ -590,7 +590,7 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_flag("--creases-ignore-shading", args->creases_ignore_shading,
                 "Characters: every edge sharper than the crease angle is a crease, even where the "
                 "source shades it smooth (by default such an edge is rounded as its renderer "
-                "draws it; docs/characters.md, \"Smooth-shaded edges are not creases\")");
+                "draws it; docs/characters.md, \"Smooth-shaded parts follow their shading\")");
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");

@@ -56,7 +56,7 @@ struct QuadRemeshOptions {
   /// them in its input mesh's indices and renumbers them through its weld). A low-poly
   /// character shaded smooth across an edge (the same normals on both sides) means the surface
   /// round there; its facets' kinks are how few triangles approximate it (docs/characters.md,
-  /// "Smooth-shaded edges are not creases").
+  /// "Smooth-shaded parts follow their shading").
   std::vector<std::array<std::uint32_t, 2>> smooth_edges;
 };
 

@@ -100,7 +100,7 @@ struct CharacterFitOptions {
   /// edges are all shaded smooth gets crease_smoothing and vertex_weight, so its facets' kinks
   /// are rounded, as its renderer draws them, instead of followed with ripples. A hard edge
   /// (normals split across it) and a primitive without normals keep their creases
-  /// (docs/characters.md, "Smooth-shaded edges are not creases"). false: every sharp edge is a
+  /// (docs/characters.md, "Smooth-shaded parts follow their shading"). false: every sharp edge is a
   /// crease (before 2026-12-04's seventh session).
   bool creases_follow_shading = true;
   /// The displacement levels' thin-plate weight (AdaptiveDisplacementOptions::smoothing) on a
