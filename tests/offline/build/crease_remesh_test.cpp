@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "dermis/offline/build/control_mesh.h"
 #include "dermis/offline/build/crease_chains.h"
 #include "dermis/offline/build/quad_pairing.h"
 #include "dermis/offline/build/quad_remesh.h"
@@ -314,4 +315,50 @@ TEST_CASE("creases: edges the input shades smooth are never creases") {
   CHECK(r.crease_edges == 32);
   CHECK(r.crease_chains == 1);
   CHECK(r.crease_edges_kept == 32);
+}
+
+TEST_CASE("creases: BuildControlMesh renumbers the smooth edges through its weld") {
+  // The capped cylinder with every triangle's corners its own vertices (as a glTF primitive
+  // with split normals stores them): the bottom rim named smooth by one triangle's copies of
+  // its ends, so the weld must carry the names over. Out-of-range indices and a pair the weld
+  // collapses into one vertex name nothing.
+  const TriMesh m = CappedCylinder(32, 4);
+  PolygonMesh soup;
+  std::vector<std::array<std::uint32_t, 2>> smooth;
+  for (std::size_t t = 0; t < m.t.size(); t += 3) {
+    const Index base = static_cast<Index>(soup.positions.size());
+    for (int k = 0; k < 3; ++k) soup.positions.push_back(m.x[m.t[t + static_cast<std::size_t>(k)]]);
+    soup.AddFace({base, base + 1, base + 2});
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = m.t[t + static_cast<std::size_t>(k)];
+      const std::uint32_t b = m.t[t + static_cast<std::size_t>((k + 1) % 3)];
+      if (a < 32 && b < 32) {  // a bottom rim edge, named by this triangle's copies
+        smooth.push_back(
+            {static_cast<std::uint32_t>(base + k), static_cast<std::uint32_t>(base + (k + 1) % 3)});
+      }
+    }
+  }
+  REQUIRE(smooth.size() == 64u);    // each rim edge from its side triangle and its cap triangle
+  smooth.push_back({0, 1u << 30});  // out of range
+  for (std::size_t j = 1; j < soup.positions.size(); ++j) {
+    if (soup.positions[j] == soup.positions[0]) {  // a copy of vertex 0: welded into one
+      smooth.push_back({0, static_cast<std::uint32_t>(j)});
+      break;
+    }
+  }
+  REQUIRE(smooth.size() == 66u);
+  ControlMeshOptions options;
+  options.method = ControlMeshMethod::kRemesh;
+  options.target_vertices = 200;
+  options.remesh.crease_angle_deg = 30.0;
+  PolygonMesh control;
+  ControlMeshInfo info;
+  REQUIRE(BuildControlMesh(soup, options, &control, &info).ok());
+  REQUIRE(info.method == "remesh");
+  CHECK(info.quality.crease_edges == 64);  // both rims
+  options.remesh.smooth_edges = smooth;
+  REQUIRE(BuildControlMesh(soup, options, &control, &info).ok());
+  REQUIRE(info.method == "remesh");
+  CHECK(info.quality.crease_edges == 32);  // the top rim only
+  CHECK(info.quality.crease_chains == 1);
 }

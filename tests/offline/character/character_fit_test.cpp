@@ -604,7 +604,7 @@ TEST_CASE("character: a smooth-shaded tube follows its shading surface") {
   CHECK(shaded < 0.25 * facets);
   CHECK(capped < facets);
   CHECK(capped > shaded);
-  CHECK(flat_shaded == Approx(facets).epsilon(0.1));
+  CHECK(flat_shaded == Approx(facets).epsilon(0.05));
 }
 
 TEST_CASE("character: edges shaded smooth are not creases but hard edges are") {

@@ -417,13 +417,16 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   if (shading.curved()) {
     std::vector<std::uint32_t> triangles(dense.face_vertices.begin(), dense.face_vertices.end());
     if (tree.Build(dense.positions, triangles)) {
-      fo.place_control_vertices = [&](PolygonMesh* control) {
+      // A hook the caller gave runs after the move.
+      std::function<void(PolygonMesh*)> then = options.fit.place_control_vertices;
+      fo.place_control_vertices = [&tree, &shading, then](PolygonMesh* control) {
         for (Vec3& x : control->positions) {
           const ClosestPoint cp = tree.Query(x);
           if (cp.triangle == kInvalidIndex) continue;
           const double w[3] = {cp.barycentric.x, cp.barycentric.y, cp.barycentric.z};
           x = shading.Point(cp.triangle, w);
         }
+        if (then) then(control);
       };
     }
   }

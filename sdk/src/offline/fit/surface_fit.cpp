@@ -158,9 +158,13 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     Status s = BuildControlMesh(*input.mesh, cm, &fitted.control_mesh, &rep.control_mesh);
     if (!s.ok()) return s;
     if (options.place_control_vertices) {
-      const std::size_t faces = fitted.control_mesh.face_vertices.size();
+      const std::vector<Index> faces = fitted.control_mesh.face_vertices;
+      const std::vector<Index> offsets = fitted.control_mesh.face_offsets;
+      const std::size_t vertices = fitted.control_mesh.positions.size();
       options.place_control_vertices(&fitted.control_mesh);
-      if (fitted.control_mesh.face_vertices.size() != faces) {
+      if (fitted.control_mesh.face_vertices != faces ||
+          fitted.control_mesh.face_offsets != offsets ||
+          fitted.control_mesh.positions.size() != vertices) {
         return Status::Internal(where + ": placing the control vertices changed the faces");
       }
     }

@@ -40,17 +40,20 @@ void ShadingSurface::Build(const PolygonMesh& mesh, const std::vector<Vec3>& cor
     shaded_[f] = all ? 1 : 0;
     if (!all) std::fill(normals_.begin() + 3 * f, normals_.begin() + 3 * f + 3, Vec3(0.0));
   }
-  // (a, b, face, corner opposite) per face edge, a < b: an edge is curved where exactly two
-  // shaded faces meet with the same normals at both of its ends.
-  std::vector<std::array<std::uint32_t, 4>> half;
+  // (a, b, face, corner opposite, shaded) per face edge, a < b, over every face (a face
+  // without normals, without area or of another size counts too): an edge is curved where
+  // exactly two faces meet, both shaded, with the same normals at both of its ends.
+  std::vector<std::array<std::uint32_t, 5>> half;
   half.reserve(3 * nf);
   for (std::size_t f = 0; f < nf; ++f) {
-    if (!shaded_[f]) continue;
     const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const std::uint32_t a = static_cast<std::uint32_t>(v[(k + 1) % 3]);
-      const std::uint32_t b = static_cast<std::uint32_t>(v[(k + 2) % 3]);
-      half.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(f), k});
+    const std::uint32_t size = static_cast<std::uint32_t>(mesh.face_size(static_cast<Index>(f)));
+    for (std::uint32_t k = 0; k < size; ++k) {
+      const std::uint32_t a = static_cast<std::uint32_t>(v[k]);
+      const std::uint32_t b = static_cast<std::uint32_t>(v[(k + 1) % size]);
+      // In a triangle the edge (k, k + 1) is opposite corner k + 2.
+      half.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(f), (k + 2) % 3,
+                      static_cast<std::uint32_t>(shaded_[f])});
     }
   }
   std::sort(half.begin(), half.end());
@@ -63,11 +66,12 @@ void ShadingSurface::Build(const PolygonMesh& mesh, const std::vector<Vec3>& cor
   for (std::size_t i = 0; i < half.size();) {
     std::size_t j = i + 1;
     while (j < half.size() && half[j][0] == half[i][0] && half[j][1] == half[i][1]) ++j;
-    if (j == i + 2) {
+    if (j == i + 2 && half[i][4] && half[i + 1][4]) {
       const std::uint32_t f0 = half[i][2], f1 = half[i + 1][2];
-      const bool smooth =
-          glm::length(normal_at(f0, half[i][0]) - normal_at(f1, half[i][0])) < 1e-6 &&
-          glm::length(normal_at(f0, half[i][1]) - normal_at(f1, half[i][1])) < 1e-6;
+      // The same stored normals (a renderer interpolates them as one): compared exactly, so
+      // that both faces compute the edge's term from the same numbers.
+      const bool smooth = normal_at(f0, half[i][0]) == normal_at(f1, half[i][0]) &&
+                          normal_at(f0, half[i][1]) == normal_at(f1, half[i][1]);
       if (smooth) smooth_edges_.push_back({half[i][0], half[i][1]});
       if (smooth && shape > 0.0) {
         // The term at the edge's midpoint (w_k = w_l = 1/2), times the shape factor.

@@ -94,7 +94,8 @@ struct CharacterFitOptions {
   /// The remeshed control mesh keeps the source's creases (dihedral above crease_angle) as
   /// control edges, as it keeps boundaries (QuadRemeshOptions::crease_angle_deg).
   bool remesh_creases = true;
-  /// A sharp edge (dihedral above crease_angle) that the source shades smooth (its two
+  /// With remesh_creases: a sharp edge (dihedral above crease_angle) that the source shades
+  /// smooth (its two
   /// triangles carry the same NORMAL at each of its ends) is not a crease: neither a control
   /// edge (QuadRemeshOptions::smooth_edges) nor an edge with crease_samples; a part whose sharp
   /// edges are all shaded smooth gets crease_smoothing and vertex_weight, so its facets' kinks

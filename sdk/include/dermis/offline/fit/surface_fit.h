@@ -60,8 +60,10 @@ struct FitOptions {
   /// the start, so done / total is the fit's fraction; a stage that is skipped is jumped.
   ProgressCallback progress;
   /// Called on a control mesh built from the data (not a given one) before its domain surface
-  /// is made; may move its vertices, not change its faces. Empty: none. A character part shaded
-  /// smooth moves them onto its shading surface (CharacterFitOptions::smooth_part_shape).
+  /// is made; may move its vertices, not change its faces or their count (refused). Empty:
+  /// none. FitCharacter sets it on every part with a curved shading surface, moving the
+  /// vertices onto it (CharacterFitOptions::shading_shape); the report's control-mesh quality
+  /// is measured before the move.
   std::function<void(PolygonMesh* control)> place_control_vertices;
 };
 

@@ -26,26 +26,29 @@ namespace dermis {
 /// bulge far past the silhouette a renderer keeps. Immutable after Build(); queries are const.
 class ShadingSurface {
  public:
-  /// `mesh`: triangles (a face of another size, or without area, stays flat); `corner_normals`:
-  /// 3 per face in face order (normalised here; a face with a zero or non-finite one stays
-  /// flat; any other count: no normals at all);
+  /// `mesh`: triangles (a face of another size, or without area, stays flat, and Point() on a
+  /// larger face interpolates its first three corners); `corner_normals`: 3 per face in face
+  /// order (normalised here; a face with a zero or non-finite one stays flat; any other count:
+  /// no normals at all);
   /// `shape`: the shape factor in [0, 1] (0: the flat triangles). The mesh must outlive this.
   /// `max_move` (model units, <= 0: no limit): the most an edge's own term moves the surface
-  /// from the flat triangles (at the edge's midpoint); a larger term is scaled down to it, the
-  /// same from both sides. Long triangles whose normals lean would otherwise bulge far past
-  /// the source's silhouette.
+  /// from the flat triangles (on the edge, at its midpoint); a larger term is scaled down to
+  /// it, the same from both sides. Inside a face the three edges' terms add up: at most 4/3
+  /// max_move (at the centroid each term is 4/9 of its midpoint value). Long triangles whose
+  /// normals lean would otherwise bulge far past the source's silhouette.
   void Build(const PolygonMesh& mesh, const std::vector<Vec3>& corner_normals, double shape,
              double max_move);
   /// The point of face `f` at barycentric weights `w` (w[k] for its k-th corner, summing to 1).
+  /// Build() must have been called.
   Vec3 Point(Index f, const double w[3]) const;
   /// Whether the surface differs from the flat triangles anywhere.
   bool curved() const { return curved_; }
   /// Edges whose term max_move scaled down.
   int capped_edges() const { return capped_; }
-  /// The interior edges the source shades smooth (whatever the shape factor): two faces with
-  /// normals that give each end of the edge the same normal. A hard edge in a glTF asset has
-  /// its vertices split, one normal per side, so after the weld its two faces carry different
-  /// normals at its ends. Sorted (a, b) vertex pairs, a < b.
+  /// The interior edges the source shades smooth (whatever the shape factor): exactly two
+  /// faces, both with normals, that give each end of the edge the same stored normal. A hard edge
+  /// in a glTF asset has its vertices split, one normal per side, so after the weld its two faces
+  /// carry different normals at its ends. Sorted (a, b) vertex pairs, a < b.
   const std::vector<std::array<std::uint32_t, 2>>& smooth_edges() const { return smooth_edges_; }
 
  private:
