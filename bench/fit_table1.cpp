@@ -19,6 +19,7 @@
 //                             [--control-method remesh|simplify]
 //                             [--density D] [--control-fit ITERATIONS] [--tangent-weight T]
 //                             [--tangent-damping D] [--patch-agreement W] [--robust-cutoff C]
+//                             [--noisy-ratio R] (0: the control fit always fully regularised)
 //                             [--chart-type characteristic|complex|isodistance] [--finest-passes P]
 //                             [--loop-segments N] (coarse edges per boundary loop, at least)
 //                             [--no-cover-boundary] (FitOptions::cover_boundary off)
@@ -201,7 +202,8 @@ struct Settings {
   int control_fit = -1;            // -1: FitOptions' default
   double tangent_weight = -1.0;    // -1: ControlFitOptions' default
   double tangent_damping = -1.0;   // -1: ControlFitOptions' default
-  double patch_agreement = -1.0;   // -1: ControlFitOptions' default
+  double patch_agreement = -1.0;   // -1: FitOptions' default
+  double noisy_ratio = -1.0;       // --noisy-ratio R: FitOptions::control_fit_noisy_ratio
   bool no_cover_boundary = false;  // FitOptions::cover_boundary off
   double robust_cutoff = -1.0;     // -1: ControlFitOptions' default (0: no robust weights)
   int chart_type = -1;             // -1: DomainOptions' default; else a ChartType value
@@ -231,6 +233,7 @@ void ApplySettings(const Settings& st, FitOptions* options) {
   if (st.tangent_weight >= 0.0) options->control_fit.tangent_weight = st.tangent_weight;
   if (st.tangent_damping >= 0.0) options->control_fit.tangent_damping = st.tangent_damping;
   if (st.patch_agreement >= 0.0) options->control_fit.patch_agreement = st.patch_agreement;
+  if (st.noisy_ratio >= 0.0) options->control_fit_noisy_ratio = st.noisy_ratio;
   if (st.no_cover_boundary) options->cover_boundary = false;
   if (st.robust_cutoff >= 0.0) options->control_fit.robust_cutoff = st.robust_cutoff;
   if (st.chart_type >= 0) options->domain.chart_type = static_cast<ChartType>(st.chart_type);
@@ -262,6 +265,11 @@ void PrintControlMesh(const char* name, const FitReport& r) {
         "triangles -> split\n",
         name, q.seed_vertices, q.triangle_vertices, q.quads_paired, q.triangles_unpaired);
   }
+  std::printf(
+      "control-vertex fit (%s): %lld rounds, data noise %.3g of the spacing -> regularisation "
+      "%.2f\n",
+      name, static_cast<long long>(r.control_fit_rounds), r.noise_ratio,
+      r.control_fit_regularisation);
 }
 
 // Mean and largest distance from each point to a triangle mesh.
@@ -909,6 +917,8 @@ int main(int argc, char** argv) {
       st.tangent_weight = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--tangent-damping") == 0 && i + 1 < argc) {
       st.tangent_damping = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--noisy-ratio") == 0 && i + 1 < argc) {
+      st.noisy_ratio = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--patch-agreement") == 0 && i + 1 < argc) {
       st.patch_agreement = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--no-cover-boundary") == 0) {

@@ -39,7 +39,8 @@ struct FitArgs {
   int finest_passes = DisplacementFitOptions{}.finest_passes;
   double smoothing = -1.0;
   int control_fit = -1;  // -1: the library's default for the input kind
-  double patch_agreement = ControlFitOptions{}.patch_agreement;
+  double patch_agreement = FitOptions{}.control_fit.patch_agreement;
+  double noisy_ratio = FitOptions{}.control_fit_noisy_ratio;
   bool no_cover_boundary = !FitOptions{}.cover_boundary;
   std::string method;  // empty: the library's default for the input kind
   double node_weight = -1.0;
@@ -139,6 +140,7 @@ Json EffectiveOptionsJson(const FitArgs& a, const FitOptions& f) {
   if (!a.control_mesh.empty()) o["control-mesh"] = a.control_mesh;
   o["control-fit"] = f.control_fit_iterations;
   o["patch-agreement"] = f.control_fit.patch_agreement;
+  o["noisy-ratio"] = f.control_fit_noisy_ratio;
   o["no-cover-boundary"] = !f.cover_boundary;
   o["holdout"] = f.holdout;
   const DisplacementFitOptions& d = f.displacement;
@@ -173,6 +175,8 @@ Json ReportJson(const FitArgs& a, const FitOptions& options, const FitReport& r)
   j["control_vertices"] = r.control_vertices;
   j["control_faces"] = r.control_faces;
   j["control_fit_rounds"] = r.control_fit_rounds;
+  j["noise_ratio"] = r.noise_ratio;
+  j["control_fit_regularisation"] = r.control_fit_regularisation;
   j["boundary_points_beyond"] = r.boundary_points_beyond;
   j["boundary_largest_excess"] = r.boundary_largest_excess;
   j["boundary_vertices_moved"] = r.boundary_vertices_moved;
@@ -302,6 +306,7 @@ int RunFitCharacter(const FitArgs& a) {
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit.patch_agreement = a.patch_agreement;
+  options.fit.control_fit_noisy_ratio = a.noisy_ratio;
   options.fit.cover_boundary = !a.no_cover_boundary;
   options.fit.threads = a.threads;
   ProgressBar progress(kFitCommand, a.quiet);
@@ -393,6 +398,7 @@ int RunFit(const FitArgs& a) {
   ApplyDisplacementArgs(a, &options.displacement);
   if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
   options.control_fit.patch_agreement = a.patch_agreement;
+  options.control_fit_noisy_ratio = a.noisy_ratio;
   options.cover_boundary = !a.no_cover_boundary;
   options.holdout = a.holdout;
   options.threads = a.threads;
@@ -550,6 +556,13 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "farther; docs/fitting.md)")
       ->check(CLI::Range(0.0, 1e3))
       ->capture_default_str();
+  cmd->add_option("--noisy-ratio", args->noisy_ratio,
+                  "Control-vertex fit: the data's estimated noise, over its spacing, at which the "
+                  "fit is regularised in full (--patch-agreement and the tangent damping); less "
+                  "noisy data slides more freely, over more rounds (0: always in full; "
+                  "docs/fitting.md, \"Noise-adaptive control fit\")")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_flag("--no-cover-boundary", args->no_cover_boundary,
                 "Leave the built control mesh's boundary where the control-vertex fit puts it "
                 "(default: move its boundary vertices out so that the surface covers the data's "
@@ -616,7 +629,8 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         if (args->creases_ignore_shading) {
           args->character_only.push_back("--creases-ignore-shading");
         }
-        for (const char* name : {"--control-vertices", "--control-fit", "--patch-agreement"}) {
+        for (const char* name :
+             {"--control-vertices", "--control-fit", "--patch-agreement", "--noisy-ratio"}) {
           if (cmd->count(name) > 0) args->automatic_only.push_back(name);
         }
         // --no-cover-boundary=false asks for nothing.

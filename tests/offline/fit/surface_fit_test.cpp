@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -519,6 +520,50 @@ TEST_CASE("fit: place_control_vertices moves the built control mesh's vertices")
   const Status s = FitSurface(input, options, &again, &report);
   CHECK(s.code() == StatusCode::kInternal);
   CHECK(s.message().find("changed the faces") != std::string::npos);
+}
+
+TEST_CASE("fit: the control fit's regularisation follows the data's noise") {
+  // An exact tessellation (noise over spacing 0.0016: the quadric's truncation) slides its
+  // control vertices freely over 6 rounds; the same sphere with uniform noise of +-5 % of its
+  // spacing along the radius (estimated 0.026, above the noisy ratio of 0.01) is regularised
+  // in full over 2; a noisy ratio of 0 always regularises.
+  const PolygonMesh exact = BumpySphereMesh(60, 30, 0.05);
+  PolygonMesh noisy = exact;
+  std::uint64_t state = 7;
+  for (Vec3& p : noisy.positions) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const double u = static_cast<double>(state >> 11) / static_cast<double>(1ull << 53) - 0.5;
+    p *= 1.0 + 0.1 * 0.1 * u;  // the spacing is about 0.1: +-0.005 along the radius
+  }
+  FitOptions options;
+  options.control_vertices = 60;
+  options.displacement.adaptive.max_levels = 1;
+  auto fit = [&](const PolygonMesh& mesh) {
+    FitInput input;
+    input.points = mesh.positions;
+    input.mesh = &mesh;
+    FittedSurface fitted;
+    FitReport report;
+    const Status s = FitSurface(input, options, &fitted, &report);
+    INFO(s.message());
+    REQUIRE(s.ok());
+    return report;
+  };
+  const FitReport clean = fit(exact);
+  INFO("noise over spacing: exact " << clean.noise_ratio);
+  CHECK(clean.noise_ratio < options.control_fit_clean_ratio);
+  CHECK(clean.control_fit_regularisation == 0.0);
+  CHECK(clean.control_fit_rounds == options.control_fit_clean_iterations);
+  const FitReport rough = fit(noisy);
+  INFO("noisy " << rough.noise_ratio);
+  CHECK(rough.noise_ratio > options.control_fit_noisy_ratio);
+  CHECK(rough.control_fit_regularisation == 1.0);
+  CHECK(rough.control_fit_rounds == options.control_fit_iterations);
+  options.control_fit_noisy_ratio = 0.0;
+  const FitReport fixed = fit(exact);
+  CHECK(fixed.noise_ratio == 0.0);
+  CHECK(fixed.control_fit_regularisation == 1.0);
+  CHECK(fixed.control_fit_rounds == options.control_fit_iterations);
 }
 
 TEST_CASE("fit: .dsurf round trip is bit-exact and threads do not change the bytes") {

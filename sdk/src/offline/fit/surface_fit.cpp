@@ -12,6 +12,7 @@
 #include "dermis/offline/fit/boundary_cover.h"
 #include "dermis/offline/fit/control_fit.h"
 #include "dermis/offline/fit/lost_point_parameters.h"
+#include "dermis/offline/fit/noise_estimate.h"
 #include "dermis/offline/fit/point_fit.h"
 #include "dermis/offline/fit/surface_projection.h"
 #include "dermis/offline/geometry/triangle_distance.h"
@@ -93,8 +94,33 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   // point, in units of one point projected (FitPoints); skipped stages are jumped.
   const std::size_t n = input.points.size();
   const bool control_fit_planned = !input.control && options.control_fit_iterations > 0;
-  const std::size_t rounds =
-      control_fit_planned ? static_cast<std::size_t>(options.control_fit_iterations) : 0;
+  // The control fit's regularisation follows the data's noise (FitOptions::
+  // control_fit_noisy_ratio): full on a scan, none on an exact tessellation.
+  ControlFitOptions control_fit = options.control_fit;
+  int control_rounds = options.control_fit_iterations;
+  if (control_fit_planned && input.mesh && options.control_fit_noisy_ratio > 0.0) {
+    const VertexNoise noise = EstimateVertexNoise(*input.mesh);
+    if (noise.vertices_used > 0 && noise.spacing > 0.0) {
+      rep.noise_ratio = noise.median / noise.spacing;
+      const double clean =
+          std::min(options.control_fit_clean_ratio, options.control_fit_noisy_ratio);
+      const double span = options.control_fit_noisy_ratio - clean;
+      const double r = span > 0.0
+                           ? std::clamp((rep.noise_ratio - clean) / span, 0.0, 1.0)
+                           : (rep.noise_ratio >= options.control_fit_noisy_ratio ? 1.0 : 0.0);
+      rep.control_fit_regularisation = r;
+      if (control_fit.tangent_damping > control_fit.damping) {
+        control_fit.tangent_damping =
+            control_fit.damping + r * (control_fit.tangent_damping - control_fit.damping);
+      }
+      control_fit.patch_agreement *= r;
+      control_rounds =
+          static_cast<int>(std::lround(r * options.control_fit_iterations +
+                                       (1.0 - r) * std::max(options.control_fit_iterations,
+                                                            options.control_fit_clean_iterations)));
+    }
+  }
+  const std::size_t rounds = control_fit_planned ? static_cast<std::size_t>(control_rounds) : 0;
   const std::size_t w_control_mesh = input.control ? n / 8 : kControlMeshWork * n;
   const std::size_t w_round = kControlRoundWork * n;
   const std::size_t w_projection = n;
@@ -199,7 +225,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   // surface costs little, and the solve was about two thirds of the projection's time
   // (docs/fitting.md, "The fit's time").
   PointFitOptions pf_rounds = pf_parameters;
-  pf_rounds.optimize = !(options.control_fit.tangent_weight < 1.0);
+  pf_rounds.optimize = !(control_fit.tangent_weight < 1.0);
   pf_rounds.optimize_beside_boundary = true;
   std::vector<PointFit> fits;
   // A built control mesh lies on the data; moving its vertices so that the smooth domain
@@ -209,10 +235,10 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
       static_cast<double>(fit_points.size()) >=
           options.control_fit_min_points_per_vertex * domain.num_vertices()) {
     progress("control-vertex fit", w_control_mesh);
-    ControlFitOptions cf = options.control_fit;
+    ControlFitOptions cf = control_fit;
     cf.threads = rep.threads;
     std::vector<Vec3> x = fitted.surface.control.positions;
-    for (int it = 0; it < options.control_fit_iterations; ++it) {
+    for (int it = 0; it < control_rounds; ++it) {
       FitPoints(fitted.surface, fit_points, pf_rounds, &fits);
       // A round that cannot be solved (no usable data) leaves the positions of the last one.
       if (!FitControlPositions(domain, fit_points, fits, cf, &x).ok()) break;

@@ -62,8 +62,9 @@ struct ControlFitOptions {
   /// patch_agreement * sum_a psi_a |P_a(z_a) - Q(z)|^2, over the corner patches blended at its
   /// parameter, so the patches are held to one surface and not only their blend. It makes the
   /// per-chart projections consistent (the paper's error without optimisation) at the cost of
-  /// the blend's distance to the data; docs/fitting.md, "Control-vertex fit" has the
-  /// measurements behind the default (0: off).
+  /// the blend's distance to the data; docs/fitting.md, "Control-vertex fit" and
+  /// "Noise-adaptive control fit" have the measurements (0: off; FitOptions::control_fit sets
+  /// 1, which FitSurface scales down on clean data with tangent_damping).
   double patch_agreement = 0.0;
   int threads = 0;  ///< 0: hardware concurrency. Results do not depend on it.
 };

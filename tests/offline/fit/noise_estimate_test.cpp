@@ -1,0 +1,112 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+#include "dermis/offline/fit/noise_estimate.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+
+using namespace dermis;
+
+namespace {
+
+/// An n x n grid of spacing h in the plane z = 0 (two triangles per cell), each vertex lifted
+/// by `amplitude` times a deterministic value in [-1, 1].
+PolygonMesh NoisyPlane(int n, double h, double amplitude) {
+  PolygonMesh m;
+  std::uint64_t state = 12345;
+  auto next = [&]() {  // a linear congruential generator: the same values everywhere
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) / static_cast<double>(1ull << 53) * 2.0 - 1.0;
+  };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) m.positions.push_back(Vec3(i * h, j * h, amplitude * next()));
+  }
+  auto at = [&](int i, int j) { return static_cast<Index>(j * n + i); };
+  for (int j = 0; j + 1 < n; ++j) {
+    for (int i = 0; i + 1 < n; ++i) {
+      m.AddFace({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.AddFace({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+  return m;
+}
+
+/// The unit sphere as a latitude-longitude grid (poles as fans), exact positions.
+PolygonMesh Sphere(int n_theta, int n_phi) {
+  PolygonMesh m;
+  const double pi = 3.14159265358979323846;
+  m.positions.push_back(Vec3(0.0, 0.0, 1.0));
+  for (int j = 1; j < n_phi; ++j) {
+    for (int i = 0; i < n_theta; ++i) {
+      const double t = 2 * pi * i / n_theta, p = pi * j / n_phi;
+      m.positions.push_back(
+          Vec3(std::sin(p) * std::cos(t), std::sin(p) * std::sin(t), std::cos(p)));
+    }
+  }
+  m.positions.push_back(Vec3(0.0, 0.0, -1.0));
+  const Index south = m.num_vertices() - 1;
+  auto at = [&](int j, int i) { return 1 + (j - 1) * n_theta + (i % n_theta); };
+  for (int i = 0; i < n_theta; ++i) m.AddFace({0, at(1, i), at(1, i + 1)});
+  for (int j = 1; j + 1 < n_phi; ++j) {
+    for (int i = 0; i < n_theta; ++i) {
+      m.AddFace({at(j, i), at(j + 1, i), at(j + 1, i + 1)});
+      m.AddFace({at(j, i), at(j + 1, i + 1), at(j, i + 1)});
+    }
+  }
+  for (int i = 0; i < n_theta; ++i) m.AddFace({south, at(n_phi - 1, i + 1), at(n_phi - 1, i)});
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("noise estimate: an exact plane has none, and noise scales the estimate", "[noise]") {
+  const VertexNoise flat = EstimateVertexNoise(NoisyPlane(30, 0.1, 0.0));
+  CHECK(flat.vertices_used > 500);
+  CHECK(flat.median < 1e-12);
+  // One-ring edges of this grid: four of 0.1 and two diagonals of 0.1414; boundary vertices
+  // have fewer. The median vertex's mean lies between.
+  CHECK(flat.spacing > 0.1);
+  CHECK(flat.spacing < 0.1415);
+  // Uniform noise of amplitude a in z: the residual is the vertex's own noise less what the
+  // quadric through its neighbours predicts, of the order of a. Twice the noise, twice the
+  // estimate (the frames move a little with the noise).
+  const VertexNoise a = EstimateVertexNoise(NoisyPlane(30, 0.1, 0.002));
+  const VertexNoise b = EstimateVertexNoise(NoisyPlane(30, 0.1, 0.004));
+  INFO("estimate at amplitude 0.002: " << a.median << ", at 0.004: " << b.median);
+  CHECK(a.median > 0.3 * 0.002);
+  CHECK(a.median < 1.2 * 0.002);
+  CHECK(b.median / a.median == Approx(2.0).epsilon(0.01));
+}
+
+TEST_CASE("noise estimate: a smooth surface sampled exactly gives the quadric's truncation",
+          "[noise]") {
+  // On the unit sphere the quadric misses the fourth-order term of the height, so the
+  // estimate over the spacing falls as the spacing cubed: halving the spacing divides it by
+  // about 8, and a fine tessellation lies far below a scan's noise (the bunny: 0.021).
+  const VertexNoise coarse = EstimateVertexNoise(Sphere(40, 20));
+  const VertexNoise fine = EstimateVertexNoise(Sphere(80, 40));
+  const double rc = coarse.median / coarse.spacing, rf = fine.median / fine.spacing;
+  INFO("noise over spacing: 40 x 20 " << rc << ", 80 x 40 " << rf);
+  CHECK(rc < 0.01);
+  CHECK(rf < 0.003);
+  CHECK(rc / rf > 5.0);
+  CHECK(rc / rf < 12.0);
+}
+
+TEST_CASE("noise estimate: too small, empty and broken meshes give zeros or skip", "[noise]") {
+  CHECK(EstimateVertexNoise(PolygonMesh()).vertices_used == 0);
+  PolygonMesh one;
+  one.positions = {Vec3(0.0), Vec3(1.0, 0.0, 0.0), Vec3(0.0, 1.0, 0.0)};
+  one.AddFace({0, 1, 2});
+  const VertexNoise small = EstimateVertexNoise(one);
+  CHECK(small.vertices_used == 0);
+  CHECK(small.median == 0.0);
+  CHECK(small.spacing == 0.0);
+  PolygonMesh broken = NoisyPlane(12, 0.1, 0.0);
+  broken.positions[60].x = std::nan("");
+  const VertexNoise b = EstimateVertexNoise(broken);
+  CHECK(b.vertices_used > 50);
+  CHECK(std::isfinite(b.median));
+  CHECK(std::isfinite(b.spacing));
+  CHECK(EstimateVertexNoise(NoisyPlane(12, 0.1, 0.0), 0).vertices_used == 0);
+}
