@@ -3,10 +3,12 @@
 // surface, .dsurf round trips, determinism across threads and bad inputs.
 #include "dermis/offline/fit/surface_fit.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -812,4 +814,90 @@ TEST_CASE("fit: the Stanford bunny with 540 control vertices", "[heavy]") {
     rim_max = std::max(rim_max, tree.Query(e.first).distance / report.scale);
   INFO("scan boundary vertices to the level-32 tessellation: max " << rim_max);
   CHECK(rim_max <= 6e-3);
+}
+
+TEST_CASE("fit: the smooth torus meets issue 15's domain and full-surface goals", "[heavy]") {
+  // The built-in torus's surface tessellated at level 12 (6,912 exact points) fitted with 200
+  // control vertices; distances in the unit where the largest side is 1, the fit tessellated
+  // at level 24, both directions (bench_fit --rows torus). The input is exactly symmetric, so
+  // its control mesh depends on how rounding breaks ties: the goals are judged on the median
+  // of nine draws, the exact input and eight moved by at most 1e-12 (docs/fitting.md,
+  // "Measured: the torus"). Goals: domain surface mean <= 5e-4 and max <= 5e-3, full surface
+  // max <= 2e-3. Measured: 4.86e-4, 3.69e-3 and 8.8e-4.
+  PolygonMesh control;
+  REQUIRE(MakeBuiltinMesh("torus", &control).ok());
+  ControlSurface cs;
+  REQUIRE(BuildControlSurface(control, DomainOptions(), &cs).ok());
+  TessellationPattern pattern;
+  REQUIRE(TessellationPattern::Build(cs.domain->topology(), 12, &pattern).ok());
+  std::vector<double> domain_mean, domain_max, full_max;
+  for (unsigned seed = 0; seed <= 8; ++seed) {
+    PolygonMesh mesh;
+    mesh.positions.resize(pattern.samples.size());
+    EvaluateSamples(*cs.domain, cs.patches.data(), nullptr, pattern.samples.data(),
+                    pattern.samples.size(), mesh.positions.data(), nullptr);
+    if (seed > 0) {
+      std::mt19937 rng(seed);
+      std::uniform_real_distribution<double> u(-1e-12, 1e-12);
+      for (Vec3& p : mesh.positions) {
+        const double dx = u(rng), dy = u(rng), dz = u(rng);
+        p += Vec3(dx, dy, dz);
+      }
+    }
+    for (std::size_t t = 0; t < pattern.triangles.size(); t += 3) {
+      mesh.AddFace({static_cast<Index>(pattern.triangles[t]),
+                    static_cast<Index>(pattern.triangles[t + 1]),
+                    static_cast<Index>(pattern.triangles[t + 2])});
+    }
+    FitInput input;
+    input.points = mesh.positions;
+    input.mesh = &mesh;
+    FitOptions options;
+    options.control_vertices = 200;
+    FittedSurface fitted;
+    FitReport report;
+    REQUIRE(FitSurface(input, options, &fitted, &report).ok());
+    CHECK(report.control_fit_regularisation == 0.0);  // an exact tessellation: clean
+    TriangleDistanceTree data_tree;
+    data_tree.Build(mesh.positions, TriangulateFan(mesh));
+    TessellationPattern fine;
+    REQUIRE(TessellationPattern::Build(fitted.surface.domain->topology(), 24, &fine).ok());
+    for (int full = 0; full < 2; ++full) {
+      TruncatedDisplacement none(fitted.displacement.get(), 0);
+      const Displacement* disp =
+          full ? static_cast<const Displacement*>(fitted.displacement.get()) : &none;
+      std::vector<Vec3> x(fine.samples.size());
+      EvaluateSamples(*fitted.surface.domain, fitted.surface.patches.data(), disp,
+                      fine.samples.data(), x.size(), x.data(), nullptr);
+      TriangleDistanceTree surface_tree;
+      surface_tree.Build(x, fine.triangles);
+      double mean[2] = {0.0, 0.0}, max = 0.0;
+      for (const Vec3& p : mesh.positions) {
+        const double d = surface_tree.Query(p).distance / report.scale;
+        mean[0] += d / static_cast<double>(mesh.positions.size());
+        max = std::max(max, d);
+      }
+      for (const Vec3& p : x) {
+        const double d = data_tree.Query(p).distance / report.scale;
+        mean[1] += d / static_cast<double>(x.size());
+        max = std::max(max, d);
+      }
+      if (full) {
+        full_max.push_back(max);
+      } else {
+        domain_mean.push_back(std::max(mean[0], mean[1]));
+        domain_max.push_back(max);
+      }
+    }
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  INFO("median of nine draws: domain mean " << median(domain_mean) << ", domain max "
+                                            << median(domain_max) << ", full max "
+                                            << median(full_max));
+  CHECK(median(domain_mean) <= 5e-4);
+  CHECK(median(domain_max) <= 5e-3);
+  CHECK(median(full_max) <= 2e-3);
 }
