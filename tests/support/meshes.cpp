@@ -44,4 +44,32 @@ PolygonMesh Builtin(const std::string& name) {
   return m;
 }
 
+PolygonMesh BumpySphereMesh(int n_theta, int n_phi, double a) {
+  const double pi = 3.14159265358979323846;
+  auto bumpy = [a](double theta, double phi) {
+    const double r = 1.0 + a * std::sin(3.0 * theta) * std::sin(2.0 * phi);
+    return r *
+           Vec3(std::sin(phi) * std::cos(theta), std::sin(phi) * std::sin(theta), std::cos(phi));
+  };
+  PolygonMesh m;
+  m.source_name = "bumpy sphere";
+  m.positions.push_back(bumpy(0.0, 0.0));
+  for (int j = 1; j < n_phi; ++j) {
+    for (int i = 0; i < n_theta; ++i)
+      m.positions.push_back(bumpy(2 * pi * i / n_theta, pi * j / n_phi));
+  }
+  m.positions.push_back(bumpy(0.0, pi));
+  const Index south = m.num_vertices() - 1;
+  auto at = [&](int j, int i) { return 1 + (j - 1) * n_theta + (i % n_theta); };
+  for (int i = 0; i < n_theta; ++i) m.AddFace({0, at(1, i), at(1, i + 1)});
+  for (int j = 1; j + 1 < n_phi; ++j) {
+    for (int i = 0; i < n_theta; ++i) {
+      m.AddFace({at(j, i), at(j + 1, i), at(j + 1, i + 1)});
+      m.AddFace({at(j, i), at(j + 1, i + 1), at(j, i + 1)});
+    }
+  }
+  for (int i = 0; i < n_theta; ++i) m.AddFace({south, at(n_phi - 1, i + 1), at(n_phi - 1, i)});
+  return m;
+}
+
 }  // namespace dermis::test

@@ -21,4 +21,9 @@ void Perturb(PolygonMesh* mesh, double amount, std::uint32_t seed);
 /// A built-in mesh, failing the test if it cannot be made.
 PolygonMesh Builtin(const std::string& name);
 
+/// A bumpy sphere, radius 1 + a sin(3 theta) sin(2 phi) around the origin (a = 0: the unit
+/// sphere), as a dense triangle mesh: a latitude-longitude grid of n_theta x (n_phi - 1)
+/// vertices, the poles as fans.
+PolygonMesh BumpySphereMesh(int n_theta, int n_phi, double a);
+
 }  // namespace dermis::test

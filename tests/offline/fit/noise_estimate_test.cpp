@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "test_meshes.h"
+
 using namespace dermis;
 
 namespace {
@@ -28,32 +30,6 @@ PolygonMesh NoisyPlane(int n, double h, double amplitude) {
       m.AddFace({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
     }
   }
-  return m;
-}
-
-/// The unit sphere as a latitude-longitude grid (poles as fans), exact positions.
-PolygonMesh Sphere(int n_theta, int n_phi) {
-  PolygonMesh m;
-  const double pi = 3.14159265358979323846;
-  m.positions.push_back(Vec3(0.0, 0.0, 1.0));
-  for (int j = 1; j < n_phi; ++j) {
-    for (int i = 0; i < n_theta; ++i) {
-      const double t = 2 * pi * i / n_theta, p = pi * j / n_phi;
-      m.positions.push_back(
-          Vec3(std::sin(p) * std::cos(t), std::sin(p) * std::sin(t), std::cos(p)));
-    }
-  }
-  m.positions.push_back(Vec3(0.0, 0.0, -1.0));
-  const Index south = m.num_vertices() - 1;
-  auto at = [&](int j, int i) { return 1 + (j - 1) * n_theta + (i % n_theta); };
-  for (int i = 0; i < n_theta; ++i) m.AddFace({0, at(1, i), at(1, i + 1)});
-  for (int j = 1; j + 1 < n_phi; ++j) {
-    for (int i = 0; i < n_theta; ++i) {
-      m.AddFace({at(j, i), at(j + 1, i), at(j + 1, i + 1)});
-      m.AddFace({at(j, i), at(j + 1, i + 1), at(j, i + 1)});
-    }
-  }
-  for (int i = 0; i < n_theta; ++i) m.AddFace({south, at(n_phi - 1, i + 1), at(n_phi - 1, i)});
   return m;
 }
 
@@ -83,8 +59,8 @@ TEST_CASE("noise estimate: a smooth surface sampled exactly gives the quadric's 
   // On the unit sphere the quadric misses the fourth-order term of the height, so the
   // estimate over the spacing falls as the spacing cubed: halving the spacing divides it by
   // about 8, and a fine tessellation lies far below a scan's noise (the bunny: 0.021).
-  const VertexNoise coarse = EstimateVertexNoise(Sphere(40, 20));
-  const VertexNoise fine = EstimateVertexNoise(Sphere(80, 40));
+  const VertexNoise coarse = EstimateVertexNoise(test::BumpySphereMesh(40, 20, 0.0));
+  const VertexNoise fine = EstimateVertexNoise(test::BumpySphereMesh(80, 40, 0.0));
   const double rc = coarse.median / coarse.spacing, rf = fine.median / fine.spacing;
   INFO("noise over spacing: 40 x 20 " << rc << ", 80 x 40 " << rf);
   CHECK(rc < 0.01);

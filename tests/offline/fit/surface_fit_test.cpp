@@ -37,31 +37,6 @@ Vec3 Bumpy(double theta, double phi, double a) {
   return r * Vec3(std::sin(phi) * std::cos(theta), std::sin(phi) * std::sin(theta), std::cos(phi));
 }
 
-// A dense triangle mesh of the bumpy sphere (latitude-longitude grid, poles as fans).
-PolygonMesh BumpySphereMesh(int n_theta, int n_phi, double a) {
-  PolygonMesh m;
-  m.source_name = "bumpy sphere";
-  const double pi = 3.14159265358979323846;
-  m.positions.push_back(Bumpy(0.0, 0.0, a));
-  for (int j = 1; j < n_phi; ++j) {
-    for (int i = 0; i < n_theta; ++i) {
-      m.positions.push_back(Bumpy(2 * pi * i / n_theta, pi * j / n_phi, a));
-    }
-  }
-  m.positions.push_back(Bumpy(0.0, pi, a));
-  const Index south = m.num_vertices() - 1;
-  auto at = [&](int j, int i) { return 1 + (j - 1) * n_theta + (i % n_theta); };
-  for (int i = 0; i < n_theta; ++i) m.AddFace({0, at(1, i), at(1, i + 1)});
-  for (int j = 1; j + 1 < n_phi; ++j) {
-    for (int i = 0; i < n_theta; ++i) {
-      m.AddFace({at(j, i), at(j + 1, i), at(j + 1, i + 1)});
-      m.AddFace({at(j, i), at(j + 1, i + 1), at(j, i + 1)});
-    }
-  }
-  for (int i = 0; i < n_theta; ++i) m.AddFace({south, at(n_phi - 1, i + 1), at(n_phi - 1, i)});
-  return m;
-}
-
 PolygonMesh Cube(double half) {
   PolygonMesh m = Builtin("cube");
   for (Vec3& p : m.positions) p *= half;  // builtin cube is [-1, 1]^3
