@@ -136,11 +136,16 @@ void ApplyDisplacementArgs(const FitArgs& a, DisplacementFitOptions* o) {
 /// keyed by their command-line names (StartReport), so that a report says how to repeat its run.
 Json EffectiveOptionsJson(const FitArgs& a, const FitOptions& f) {
   Json o;
-  o["control-vertices"] = f.control_vertices;
-  if (!a.control_mesh.empty()) o["control-mesh"] = a.control_mesh;
-  o["control-fit"] = f.control_fit_iterations;
-  o["patch-agreement"] = f.control_fit.patch_agreement;
-  o["noisy-ratio"] = f.control_fit_noisy_ratio;
+  // With a given control mesh the options that only a built one takes are left out, so that
+  // the report's options repeat the run (they are refused beside --control-mesh).
+  if (a.control_mesh.empty()) {
+    o["control-vertices"] = f.control_vertices;
+    o["control-fit"] = f.control_fit_iterations;
+    o["patch-agreement"] = f.control_fit.patch_agreement;
+    o["noisy-ratio"] = f.control_fit_noisy_ratio;
+  } else {
+    o["control-mesh"] = a.control_mesh;
+  }
   o["no-cover-boundary"] = !f.cover_boundary;
   o["holdout"] = f.holdout;
   const DisplacementFitOptions& d = f.displacement;
@@ -304,7 +309,10 @@ int RunFitCharacter(const FitArgs& a) {
   options.vertex_weight = a.vertex_weight;
   options.creases_follow_shading = !a.creases_ignore_shading;
   ApplyDisplacementArgs(a, &options.fit.displacement);
-  if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
+  if (a.control_fit >= 0) {
+    options.fit.control_fit_iterations = a.control_fit;
+    options.fit.control_fit_clean_iterations = a.control_fit;
+  }
   options.fit.control_fit.patch_agreement = a.patch_agreement;
   options.fit.control_fit_noisy_ratio = a.noisy_ratio;
   options.fit.cover_boundary = !a.no_cover_boundary;
@@ -396,7 +404,11 @@ int RunFit(const FitArgs& a) {
   FitOptions options;
   options.control_vertices = a.control_vertices;
   ApplyDisplacementArgs(a, &options.displacement);
-  if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
+  if (a.control_fit >= 0) {
+    // N rounds whatever the data's noise.
+    options.control_fit_iterations = a.control_fit;
+    options.control_fit_clean_iterations = a.control_fit;
+  }
   options.control_fit.patch_agreement = a.patch_agreement;
   options.control_fit_noisy_ratio = a.noisy_ratio;
   options.cover_boundary = !a.no_cover_boundary;

@@ -90,47 +90,6 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   rep.points = static_cast<std::int64_t>(input.points.size());
   rep.points_dropped = input.points_dropped;
   rep.threads = ResolveThreadCount(options.threads);
-  // Progress (docs/fitting.md, "Progress"): each stage weighs its measured cost per data
-  // point, in units of one point projected (FitPoints); skipped stages are jumped.
-  const std::size_t n = input.points.size();
-  const bool control_fit_planned = !input.control && options.control_fit_iterations > 0;
-  // The control fit's regularisation follows the data's noise (FitOptions::
-  // control_fit_noisy_ratio): full on a scan, none on an exact tessellation.
-  ControlFitOptions control_fit = options.control_fit;
-  int control_rounds = options.control_fit_iterations;
-  if (control_fit_planned && input.mesh && options.control_fit_noisy_ratio > 0.0) {
-    const VertexNoise noise = EstimateVertexNoise(*input.mesh);
-    if (noise.vertices_used > 0 && noise.spacing > 0.0) {
-      rep.noise_ratio = noise.median / noise.spacing;
-      const double clean =
-          std::min(options.control_fit_clean_ratio, options.control_fit_noisy_ratio);
-      const double span = options.control_fit_noisy_ratio - clean;
-      const double r = span > 0.0
-                           ? std::clamp((rep.noise_ratio - clean) / span, 0.0, 1.0)
-                           : (rep.noise_ratio >= options.control_fit_noisy_ratio ? 1.0 : 0.0);
-      rep.control_fit_regularisation = r;
-      if (control_fit.tangent_damping > control_fit.damping) {
-        control_fit.tangent_damping =
-            control_fit.damping + r * (control_fit.tangent_damping - control_fit.damping);
-      }
-      control_fit.patch_agreement *= r;
-      control_rounds =
-          static_cast<int>(std::lround(r * options.control_fit_iterations +
-                                       (1.0 - r) * std::max(options.control_fit_iterations,
-                                                            options.control_fit_clean_iterations)));
-    }
-  }
-  const std::size_t rounds = control_fit_planned ? static_cast<std::size_t>(control_rounds) : 0;
-  const std::size_t w_control_mesh = input.control ? n / 8 : kControlMeshWork * n;
-  const std::size_t w_round = kControlRoundWork * n;
-  const std::size_t w_projection = n;
-  const std::size_t w_displacement = kDisplacementWork * n;
-  const std::size_t w_metrics = kMetricsWork * n;
-  const std::size_t work_total =
-      w_control_mesh + rounds * w_round + w_projection + w_displacement + w_metrics;
-  auto progress = [&](const char* stage, std::size_t done) {
-    ReportProgress(options.progress, stage, std::min(done, work_total), work_total);
-  };
   if (input.points.empty()) return Status::InvalidInput(where + ": no data points to fit");
   if (!input.weights.empty()) {
     if (input.weights.size() != input.points.size()) {
@@ -161,6 +120,47 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     return Status::InvalidInput("holdout fraction must lie in [0, 1)");
   }
   const Clock::time_point t_total = Clock::now();
+  // Progress (docs/fitting.md, "Progress"): each stage weighs its measured cost per data
+  // point, in units of one point projected (FitPoints); skipped stages are jumped.
+  const std::size_t n = input.points.size();
+  const bool control_fit_planned = !input.control && options.control_fit_iterations > 0;
+  // The control fit's regularisation follows the data's noise (FitOptions::
+  // control_fit_noisy_ratio): full on a scan, none on an exact tessellation.
+  ControlFitOptions control_fit = options.control_fit;
+  int control_rounds = options.control_fit_iterations;
+  if (control_fit_planned && input.mesh && options.control_fit_noisy_ratio > 0.0) {
+    const VertexNoise noise = EstimateVertexNoise(*input.mesh);
+    if (noise.vertices_used > 0) {
+      rep.noise_ratio = noise.median_ratio;
+      const double clean =
+          std::min(options.control_fit_clean_ratio, options.control_fit_noisy_ratio);
+      const double span = options.control_fit_noisy_ratio - clean;
+      const double r = span > 0.0
+                           ? std::clamp((rep.noise_ratio - clean) / span, 0.0, 1.0)
+                           : (rep.noise_ratio >= options.control_fit_noisy_ratio ? 1.0 : 0.0);
+      rep.control_fit_regularisation = r;
+      if (control_fit.tangent_damping > control_fit.damping) {
+        control_fit.tangent_damping =
+            control_fit.damping + r * (control_fit.tangent_damping - control_fit.damping);
+      }
+      control_fit.patch_agreement *= r;
+      control_rounds =
+          static_cast<int>(std::lround(r * options.control_fit_iterations +
+                                       (1.0 - r) * std::max(options.control_fit_iterations,
+                                                            options.control_fit_clean_iterations)));
+    }
+  }
+  const std::size_t rounds = control_fit_planned ? static_cast<std::size_t>(control_rounds) : 0;
+  const std::size_t w_control_mesh = input.control ? n / 8 : kControlMeshWork * n;
+  const std::size_t w_round = kControlRoundWork * n;
+  const std::size_t w_projection = n;
+  const std::size_t w_displacement = kDisplacementWork * n;
+  const std::size_t w_metrics = kMetricsWork * n;
+  const std::size_t work_total =
+      w_control_mesh + rounds * w_round + w_projection + w_displacement + w_metrics;
+  auto progress = [&](const char* stage, std::size_t done) {
+    ReportProgress(options.progress, stage, std::min(done, work_total), work_total);
+  };
 
   // 1. Control mesh, domain and rest patches.
   progress("control mesh", 0);
@@ -276,6 +276,11 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     }
     // A built control mesh is all quads, so its vertices are the quad mesh's.
     fitted.control_mesh.positions = fitted.surface.control.positions;
+  } else {
+    // No control-vertex fit ran (too few points per control vertex): no regularisation to
+    // report.
+    rep.noise_ratio = 0.0;
+    rep.control_fit_regularisation = 1.0;
   }
   // A given control mesh's quality (a built one's is measured as built, before the fit).
   if (input.control) MeasureQuadMesh(fitted.control_mesh, &rep.control_mesh.quality);

@@ -49,15 +49,17 @@ struct FitOptions {
   }();
   /// The control-vertex fit's regularisation follows the data's noise (docs/fitting.md,
   /// "Noise-adaptive control fit"). With a mesh, its noise is estimated
-  /// (EstimateVertexNoise: the median leave-one-out distance of a vertex from a quadric
-  /// through its two-ring, over the median edge): at or above control_fit_noisy_ratio (a scan)
+  /// (EstimateVertexNoise's median_ratio: over sampled vertices, the median of a vertex's
+  /// leave-one-out distance from a quadric through its two-ring over its mean edge; held-out
+  /// vertices count too): at or above control_fit_noisy_ratio (a scan)
   /// the fit is regularised as control_fit says (tangent_damping, patch_agreement) over
   /// control_fit_iterations rounds; at or below control_fit_clean_ratio (an exact
   /// tessellation of a smooth surface, whose residual is the quadric's truncation error) the
   /// vertices slide along the surface with only control_fit.damping and no patch agreement,
-  /// over control_fit_clean_iterations rounds; in between, linearly. A point cloud, or
-  /// control_fit_noisy_ratio <= 0, is always regularised in full. Measured: the bunny scan
-  /// 0.021, the torus tessellated at level 12 0.0014.
+  /// over max(control_fit_iterations, control_fit_clean_iterations) rounds; in between,
+  /// linearly. control_fit_noisy_ratio <= 0 always regularises in full. The ratio depends on
+  /// the resolution as well (a coarse exact tessellation reads noisier than a fine one).
+  /// Measured: the bunny scan 0.021, the torus tessellated at level 12 0.0014.
   double control_fit_clean_ratio = 0.003;
   double control_fit_noisy_ratio = 0.01;
   int control_fit_clean_iterations = 6;
@@ -140,9 +142,9 @@ struct FitReport {
   /// How the control mesh was built and its quality (method "given" for a given one).
   ControlMeshInfo control_mesh;
   std::int64_t control_fit_rounds = 0;  ///< Control-vertex fit rounds done (FitOptions).
-  /// The data's noise over its spacing (EstimateVertexNoise; 0 when not estimated: no mesh or
-  /// no control-vertex fit) and the share of the control fit's regularisation it gave (1:
-  /// full, FitOptions::control_fit_noisy_ratio).
+  /// The data's noise over its spacing (EstimateVertexNoise's median_ratio; 0 when not
+  /// estimated or when no control-vertex fit ran) and the share of the control fit's
+  /// regularisation it gave (1: full, FitOptions::control_fit_noisy_ratio).
   double noise_ratio = 0.0;
   double control_fit_regularisation = 1.0;
   /// FitOptions::cover_boundary: the data mesh's boundary vertices (not held out) found beyond
