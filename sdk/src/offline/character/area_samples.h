@@ -1,0 +1,35 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// A character part's data samples between its vertices (docs/characters.md, "Where the
+// distances are", "Smooth-shaded parts follow their shading"). Internal header of
+// character_fit.cpp.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "dermis/core/types.h"
+#include "dermis/offline/geometry/polygon_mesh.h"
+#include "dermis/offline/geometry/shading_surface.h"
+
+namespace dermis::character {
+
+/// Extra data points on the triangles, so the surface follows the source between its
+/// vertices: a barycentric grid of about `spacing` inside every triangle longer than twice
+/// that, and points about `spacing` apart along every edge longer than that (the vertices are
+/// data already). Edges where the source turns sharply (boundaries, and creases whose
+/// dihedral angle exceeds `crease_angle` radians) get `crease_factor` times as many: the smooth
+/// domain surface rounds a crease, and only data on the crease line ask the displacement to
+/// follow it (docs/characters.md, "Where the distances are"). With `crease_rows`, rows of
+/// points beside those edges fill the gap to the grid of a large triangle (area_samples.cpp).
+///
+/// An edge in `smooth_edges` (sorted (a, b), a < b) is never sharp: the source shades it smooth.
+///
+/// The points lie on `shading` (the flat triangles where its shape factor is 0): the surface
+/// the source's shading normals describe, which keeps hard edges straight.
+std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& shading,
+                              const std::vector<std::array<std::uint32_t, 2>>& smooth_edges,
+                              double spacing, double crease_angle, double crease_factor,
+                              bool crease_rows);
+
+}  // namespace dermis::character
