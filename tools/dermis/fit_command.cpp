@@ -41,6 +41,7 @@ struct FitArgs {
   int control_fit = -1;  // -1: the library's default for the input kind
   double patch_agreement = FitOptions{}.control_fit.patch_agreement;
   double noisy_ratio = FitOptions{}.control_fit_noisy_ratio;
+  int clean_rounds = FitOptions{}.control_fit_clean_iterations;
   bool no_cover_boundary = !FitOptions{}.cover_boundary;
   std::string method;  // empty: the library's default for the input kind
   double node_weight = -1.0;
@@ -143,6 +144,7 @@ Json EffectiveOptionsJson(const FitArgs& a, const FitOptions& f) {
     o["control-fit"] = f.control_fit_iterations;
     o["patch-agreement"] = f.control_fit.patch_agreement;
     o["noisy-ratio"] = f.control_fit_noisy_ratio;
+    o["clean-rounds"] = f.control_fit_clean_iterations;
   } else {
     o["control-mesh"] = a.control_mesh;
   }
@@ -309,10 +311,8 @@ int RunFitCharacter(const FitArgs& a) {
   options.vertex_weight = a.vertex_weight;
   options.creases_follow_shading = !a.creases_ignore_shading;
   ApplyDisplacementArgs(a, &options.fit.displacement);
-  if (a.control_fit >= 0) {
-    options.fit.control_fit_iterations = a.control_fit;
-    options.fit.control_fit_clean_iterations = a.control_fit;
-  }
+  if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
+  options.fit.control_fit_clean_iterations = a.clean_rounds;
   options.fit.control_fit.patch_agreement = a.patch_agreement;
   options.fit.control_fit_noisy_ratio = a.noisy_ratio;
   options.fit.cover_boundary = !a.no_cover_boundary;
@@ -404,11 +404,8 @@ int RunFit(const FitArgs& a) {
   FitOptions options;
   options.control_vertices = a.control_vertices;
   ApplyDisplacementArgs(a, &options.displacement);
-  if (a.control_fit >= 0) {
-    // N rounds whatever the data's noise.
-    options.control_fit_iterations = a.control_fit;
-    options.control_fit_clean_iterations = a.control_fit;
-  }
+  if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
+  options.control_fit_clean_iterations = a.clean_rounds;
   options.control_fit.patch_agreement = a.patch_agreement;
   options.control_fit_noisy_ratio = a.noisy_ratio;
   options.cover_boundary = !a.no_cover_boundary;
@@ -575,6 +572,12 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "docs/fitting.md, \"Noise-adaptive control fit\")")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd->add_option("--clean-rounds", args->clean_rounds,
+                  "Control-vertex fit: rounds on data below the clean noise ratio (an exact "
+                  "tessellation); noisy data runs --control-fit rounds, data between the two "
+                  "ratios a blend, never fewer than --control-fit (docs/fitting.md)")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
   cmd->add_flag("--no-cover-boundary", args->no_cover_boundary,
                 "Leave the built control mesh's boundary where the control-vertex fit puts it "
                 "(default: move its boundary vertices out so that the surface covers the data's "
@@ -641,8 +644,8 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         if (args->creases_ignore_shading) {
           args->character_only.push_back("--creases-ignore-shading");
         }
-        for (const char* name :
-             {"--control-vertices", "--control-fit", "--patch-agreement", "--noisy-ratio"}) {
+        for (const char* name : {"--control-vertices", "--control-fit", "--patch-agreement",
+                                 "--noisy-ratio", "--clean-rounds"}) {
           if (cmd->count(name) > 0) args->automatic_only.push_back(name);
         }
         // --no-cover-boundary=false asks for nothing.
