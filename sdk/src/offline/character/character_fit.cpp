@@ -99,18 +99,27 @@ VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalP
   return b;
 }
 
-/// Whether the remesher will keep creases on `mesh` (a triangle mesh): CreaseChains, its own
-/// test, at the remesh options' angles. False where the mesh cannot be a reference surface
-/// (the remesh then falls back and keeps none either).
-bool HasCrease(const PolygonMesh& mesh, const QuadRemeshOptions& remesh) {
-  std::vector<std::uint32_t> triangles;
-  triangles.reserve(mesh.face_vertices.size());
-  for (Index v : mesh.face_vertices) triangles.push_back(static_cast<std::uint32_t>(v));
+/// The remesher's own crease test (CreaseChains on a ReferenceSurface, at the remesh options'
+/// angles) on `mesh` (a triangle mesh), built once: whether it finds any crease ignoring
+/// remesh.smooth_edges (`sharp`), and whether any is left once they are excluded (`hard`). Both
+/// false where the mesh cannot be a reference surface (the remesh then falls back and keeps
+/// none either).
+struct CreaseTest {
+  bool sharp = false, hard = false;
+};
+CreaseTest TestCreases(const PolygonMesh& mesh, const QuadRemeshOptions& remesh) {
+  std::vector<std::uint32_t> triangles(mesh.face_vertices.begin(), mesh.face_vertices.end());
   ReferenceSurface ref;
-  if (!ref.Build(mesh.positions, triangles, "crease test").ok()) return false;
+  CreaseTest t;
+  if (!ref.Build(mesh.positions, triangles, "crease test").ok()) return t;
   CreaseChains creases;
-  creases.Build(ref, remesh.crease_angle_deg, remesh.corner_turn_deg, remesh.smooth_edges);
-  return !creases.edges().empty();
+  creases.Build(ref, remesh.crease_angle_deg, remesh.corner_turn_deg);
+  t.sharp = !creases.edges().empty();
+  if (t.sharp) {
+    creases.Build(ref, remesh.crease_angle_deg, remesh.corner_turn_deg, remesh.smooth_edges);
+    t.hard = !creases.edges().empty();
+  }
+  return t;
 }
 
 /// The length of the bounding box's diagonal of `x` (0 if empty).
@@ -281,12 +290,13 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   const std::vector<std::array<std::uint32_t, 2>> no_edges;
   const std::vector<std::array<std::uint32_t, 2>>& smooth_edges =
       options.creases_follow_shading ? shading.smooth_edges() : no_edges;
-  // Whether the part turns sharply anywhere, shaded smooth or not.
-  bool sharp_part = false;
+  // Whether the part turns sharply anywhere (shaded smooth or not), and whether a hard crease
+  // is left for the control mesh to keep.
+  CreaseTest creases;
   if (options.remesh_creases) {
     fo.remesh.crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
-    sharp_part = HasCrease(dense, fo.remesh);
     fo.remesh.smooth_edges = smooth_edges;
+    creases = TestCreases(dense, fo.remesh);
   }
   fo.clamp_control_vertices = true;
   // Every fit of the part follows its shading surface: the samples between the vertices lie
@@ -327,9 +337,8 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // samples between the vertices) heavier vertices. The same where every sharp edge of the
   // part is shaded smooth: no crease is left for the displacement to carry, and its facets'
   // kinks are to be rounded, as its renderer draws them, not followed.
-  const bool crease_fit = sharp_part && HasCrease(dense, fo.remesh);
-  const bool smooth_shaded = sharp_part && !crease_fit;
-  if (crease_fit || smooth_shaded) {
+  const bool crease_fit = creases.hard;
+  if (creases.sharp) {
     if (options.crease_smoothing >= 0.0) {
       fo.displacement.adaptive.smoothing = options.crease_smoothing;
     }
