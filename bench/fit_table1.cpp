@@ -33,6 +33,8 @@
 //                             [--shading-max-move M] (its largest move, of the diagonal)
 //                             [--vertex-weight W] (characters' vertices against one sample)
 //                             [--creases-ignore-shading] (smooth-shaded sharp edges are creases)
+//                             [--crease-support K] (support rows beside closed crease loops; 1:
+//                             off)
 //                             [--detail] [--mba]
 // --density, --finest-passes and --smoothing set the paper's per-chart MBA (--mba); the default
 // displacement fit is the adaptive one (docs/fitting.md, "Adaptive displacement levels").
@@ -195,6 +197,7 @@ struct Settings {
   bool where = false;             ///< --where: the largest character distances and what is there.
   bool no_crease_remesh = false;  ///< --no-crease-remesh: the remesh ignores creases.
   bool creases_ignore_shading = false;  ///< --creases-ignore-shading: smooth-shaded creases too.
+  double crease_support = -1.0;         ///< --crease-support K; -1: CharacterFitOptions' default
   int compare_without_creases = -1;     ///< --compare-without-creases 0|1 (-1: the default).
   int compare_simplified = -1;          ///< --compare-simplified 0|1 (-1: the default).
   ControlMeshMethod method = ControlMeshMethod::kRemesh;
@@ -628,20 +631,30 @@ double AbsMeanCurvatureIntegral(const Triangles& m, double weld) {
 
 // How far the lod surface's normals turn from the source's shading normals (its NORMAL
 // attribute, interpolated across the closest source triangle): the mean and the 95th
-// percentile over the lod vertices, degrees. Ripples and lumps too small for the Hausdorff
-// distance show here (and in the shading). Vertices whose closest source point is further
-// than `near` are left out (they measure the distance, not the shading). -1 without normals.
+// percentile over the lod surface's area, degrees (each lod vertex stands for a third of its
+// triangles' area, so a tessellation denser in one place, as beside a crease's support row,
+// does not weigh that place more). Ripples and lumps too small for the Hausdorff distance show
+// here (and in the shading). Vertices whose closest source point is further than `near` are
+// left out (they measure the distance, not the shading). -1 without normals.
 void ShadingDeviation(const Triangles& lod, const Triangles& source,
                       const TriangleDistanceTree& tree, double near, double* mean, double* p95) {
   *mean = *p95 = -1.0;
   if (lod.normals.size() != lod.positions.size() ||
       source.normals.size() != source.positions.size())
     return;
-  std::vector<double> angle;
+  std::vector<double> area(lod.positions.size(), 0.0);
+  for (std::size_t t = 0; t + 2 < lod.indices.size(); t += 3) {
+    const Vec3& a = lod.positions[lod.indices[t]];
+    const double third = glm::length(glm::cross(lod.positions[lod.indices[t + 1]] - a,
+                                                lod.positions[lod.indices[t + 2]] - a)) /
+                         6.0;
+    for (int k = 0; k < 3; ++k) area[lod.indices[t + static_cast<std::size_t>(k)]] += third;
+  }
+  std::vector<std::pair<double, double>> angle;  // (degrees, area)
   angle.reserve(lod.positions.size());
   for (std::size_t i = 0; i < lod.positions.size(); ++i) {
     const ClosestPoint q = tree.Query(lod.positions[i]);
-    if (q.triangle == kInvalidIndex || q.distance > near) continue;
+    if (q.triangle == kInvalidIndex || q.distance > near || !(area[i] > 0.0)) continue;
     const std::size_t t = 3 * static_cast<std::size_t>(q.triangle);
     const Vec3 n = q.barycentric.x * source.normals[source.indices[t]] +
                    q.barycentric.y * source.normals[source.indices[t + 1]] +
@@ -649,14 +662,22 @@ void ShadingDeviation(const Triangles& lod, const Triangles& source,
     const double ln = glm::length(n);
     if (!(ln > 0.0)) continue;
     const double c = std::clamp(glm::dot(n / ln, lod.normals[i]), -1.0, 1.0);
-    angle.push_back(std::acos(c) * 180.0 / 3.14159265358979323846);
+    angle.push_back({std::acos(c) * 180.0 / 3.14159265358979323846, area[i]});
   }
   if (angle.empty()) return;
-  double sum = 0.0;
-  for (double a : angle) sum += a;
-  *mean = sum / static_cast<double>(angle.size());
+  double sum = 0.0, total = 0.0;
+  for (const auto& a : angle) sum += a.first * a.second, total += a.second;
+  *mean = sum / total;
   std::sort(angle.begin(), angle.end());
-  *p95 = angle[angle.size() * 95 / 100];
+  double below = 0.0;
+  *p95 = angle.back().first;
+  for (const auto& a : angle) {
+    below += a.second;
+    if (below >= 0.95 * total) {
+      *p95 = a.first;
+      break;
+    }
+  }
 }
 
 // Points on the triangles: the vertices and a barycentric grid of spacing about `h` inside.
@@ -781,6 +802,7 @@ int RunCharacters(const Settings& st) {
     if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
     if (st.no_crease_remesh) options.remesh_creases = false;
     if (st.creases_ignore_shading) options.creases_follow_shading = false;
+    if (st.crease_support >= 0.0) options.crease_support = st.crease_support;
     if (st.compare_without_creases >= 0)
       options.compare_without_creases = st.compare_without_creases != 0;
     if (st.compare_simplified >= 0) options.compare_simplified = st.compare_simplified != 0;
@@ -878,11 +900,12 @@ int RunCharacters(const Settings& st) {
       std::printf(
           "  %s part %zu: %s, %d control vertices (target %d), valence 4 %.1f%%, corners "
           "%.1f..%.1f deg; creases: %d of %d source edges kept, %d chains (%d closed), %d "
-          "control crease edges%s%s\n",
+          "control crease edges; support rows: %d loops, %d vertices moved%s%s\n",
           name, p, c.method.c_str(), c.quality.vertices, c.quality.target_vertices,
           100.0 * c.quality.valence4_share, c.quality.min_corner_angle_deg,
           c.quality.max_corner_angle_deg, c.quality.crease_edges_kept, c.quality.crease_edges,
           c.quality.crease_chains, c.quality.crease_closed_chains, c.quality.control_crease_edges,
+          c.crease_support_loops, c.crease_support_vertices,
           c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str());
     }
   }
@@ -964,6 +987,8 @@ int main(int argc, char** argv) {
       st.compare_without_creases = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--no-crease-remesh") == 0) {
       st.no_crease_remesh = true;
+    } else if (std::strcmp(argv[i], "--crease-support") == 0 && i + 1 < argc) {
+      st.crease_support = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--creases-ignore-shading") == 0) {
       st.creases_ignore_shading = true;
     } else if (std::strcmp(argv[i], "--compare-simplified") == 0 && i + 1 < argc) {

@@ -60,6 +60,7 @@ struct FitArgs {
   double crease_smoothing = CharacterFitOptions{}.crease_smoothing;
   double vertex_weight = CharacterFitOptions{}.vertex_weight;
   bool creases_ignore_shading = false;
+  double crease_support = CharacterFitOptions{}.crease_support;
   bool refit = false;
   // Options given on the command line that only one kind of input takes (set at parse time):
   // a fit of the other kind refuses them instead of ignoring them.
@@ -107,6 +108,8 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
       m["crease_chains"] = q.crease_chains;
       m["crease_closed_chains"] = q.crease_closed_chains;
       m["control_crease_edges"] = q.control_crease_edges;
+      m["crease_support_loops"] = c.crease_support_loops;
+      m["crease_support_vertices"] = c.crease_support_vertices;
     }
     if (q.grown_target > 0) {
       m["grown_target"] = q.grown_target;
@@ -250,6 +253,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   options_json["crease-smoothing"] = options.crease_smoothing;
   options_json["vertex-weight"] = options.vertex_weight;
   options_json["creases-ignore-shading"] = !options.creases_follow_shading;
+  options_json["crease-support"] = options.crease_support;
   options_json["refit"] = a.refit;
   Json j;
   StartReport(&j, "dermis.fit-character/1", std::move(options_json));
@@ -310,6 +314,7 @@ int RunFitCharacter(const FitArgs& a) {
   options.crease_smoothing = a.crease_smoothing;
   options.vertex_weight = a.vertex_weight;
   options.creases_follow_shading = !a.creases_ignore_shading;
+  options.crease_support = a.crease_support;
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit_clean_iterations = a.clean_rounds;
@@ -619,6 +624,12 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                 "Characters: every edge sharper than the crease angle is a crease, even where the "
                 "source shades it smooth (by default such an edge is rounded as its renderer "
                 "draws it; docs/characters.md, \"Smooth-shaded parts follow their shading\")");
+  cmd->add_option("--crease-support", args->crease_support,
+                  "Characters: the control vertices beside a closed crease loop (a cap's rim) "
+                  "move towards it, keeping this fraction of their distance, so the rim comes "
+                  "out clean (1: off; docs/characters.md, \"Support rows beside crease loops\")")
+      ->check(CLI::Range(0.01, 1.0))
+      ->capture_default_str();
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
@@ -637,7 +648,7 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
           if (cmd->count(name) > 0) args->surface_only.push_back(name);
         }
         for (const char* name : {"--control-ratio", "--shading-shape", "--shading-max-move",
-                                 "--crease-smoothing", "--vertex-weight"}) {
+                                 "--crease-smoothing", "--vertex-weight", "--crease-support"}) {
           if (cmd->count(name) > 0) args->character_only.push_back(name);
         }
         if (args->refit) args->character_only.push_back("--refit");  // --refit=false is fine

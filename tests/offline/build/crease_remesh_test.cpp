@@ -1,13 +1,16 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // Feature-aware remeshing (docs/fitting.md, "Creases"): the crease chains of a reference
-// surface, pairing that never uses a crease as a diagonal, and quad remeshes of a capped
-// cylinder and a box whose crease edges must come out as control edges on the crease.
+// surface, pairing that never uses a crease as a diagonal, quad remeshes of a capped
+// cylinder and a box whose crease edges must come out as control edges on the crease, and the
+// support rows beside closed crease loops (docs/characters.md, "Support rows beside crease
+// loops").
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
 
 #include "dermis/offline/build/control_mesh.h"
 #include "dermis/offline/build/crease_chains.h"
+#include "dermis/offline/build/crease_support.h"
 #include "dermis/offline/build/quad_pairing.h"
 #include "dermis/offline/build/quad_remesh.h"
 #include "dermis/offline/build/reference_surface.h"
@@ -361,4 +364,112 @@ TEST_CASE("creases: BuildControlMesh renumbers the smooth edges through its weld
   REQUIRE(info.method == "remesh");
   CHECK(info.quality.crease_edges == 32);  // the top rim only
   CHECK(info.quality.crease_chains == 1);
+}
+
+namespace {
+
+// The quad remesh of `m` keeping its creases at 30 degrees, and the reference's chains.
+struct CreaseRemesh {
+  ReferenceSurface ref;
+  CreaseChains chains;
+  PolygonMesh control;
+};
+void RemeshWithCreases(const TriMesh& m, int target, CreaseRemesh* out) {
+  REQUIRE(out->ref.Build(m.x, m.t, "creased").ok());
+  out->chains.Build(out->ref, 30.0, 50.0);
+  QuadRemeshOptions options;
+  options.target_vertices = target;
+  options.crease_angle_deg = 30.0;
+  QuadRemeshReport r;
+  const Status s = QuadRemesh(m.x, m.t, "creased", options, &out->control, &r);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  REQUIRE(r.crease_edges_kept == r.crease_edges);
+}
+
+}  // namespace
+
+TEST_CASE("creases: support rows move the vertices beside a closed loop towards it") {
+  // The capped cylinder's two rims are closed loops. Every control vertex off the rims that
+  // shares a control edge with a rim vertex keeps `keep` of its distance to the rim polygon
+  // (identity projection: exactly), every other vertex stays where it was.
+  CreaseRemesh cr;
+  RemeshWithCreases(CappedCylinder(32, 4), 300, &cr);
+  const PolygonMesh before = cr.control;
+  const std::size_t n = before.positions.size();
+  auto rim_distance = [](const Vec3& p) {
+    return std::min(PolygonDistance(p, 32, 0.0), PolygonDistance(p, 32, 2.0));
+  };
+  std::vector<char> on_rim(n, 0), beside(n, 0);
+  for (std::size_t v = 0; v < n; ++v) on_rim[v] = rim_distance(before.positions[v]) < 1e-9;
+  for (const auto& e : Edges(before)) {
+    const std::size_t a = static_cast<std::size_t>(e[0]), b = static_cast<std::size_t>(e[1]);
+    if (on_rim[a] && !on_rim[b]) beside[b] = 1;
+    if (on_rim[b] && !on_rim[a]) beside[a] = 1;
+  }
+  int expected = 0;
+  for (char c : beside) expected += c;
+  REQUIRE(expected > 32);  // a row on the side and one on each cap
+  const double keep = 0.4;
+  CreaseSupportResult res;
+  auto identity = [](const Vec3& y) { return y; };
+  REQUIRE(SupportCreaseLoops(cr.chains, keep, 1e-9, identity, &cr.control, &res).ok());
+  CHECK(res.loops == 2);
+  CHECK(res.moved == expected);
+  CHECK(cr.control.face_vertices == before.face_vertices);
+  for (std::size_t v = 0; v < n; ++v) {
+    const Vec3 &x = before.positions[v], &y = cr.control.positions[v];
+    if (!beside[v]) {
+      CHECK(y == x);
+      continue;
+    }
+    INFO("vertex " << v << " at " << x.x << " " << x.y << " " << x.z);
+    CHECK(rim_distance(y) == Approx(keep * rim_distance(x)).epsilon(1e-9));
+    // Towards the rim it was beside: the same side of the cylinder and closer to it.
+    CHECK(std::abs(y.z - (x.z < 1.0 ? 0.0 : 2.0)) <= std::abs(x.z - (x.z < 1.0 ? 0.0 : 2.0)));
+  }
+  // A projection that puts every target back onto the cylinder: still closer to the rim.
+  CreaseRemesh onto;
+  RemeshWithCreases(CappedCylinder(32, 4), 300, &onto);
+  auto cylinder = [](const Vec3& y) {
+    const double r = std::hypot(y.x, y.y);
+    if (y.z > 1e-12 && y.z < 2.0 - 1e-12 && r > 0.0) return Vec3(y.x / r, y.y / r, y.z);
+    return y;  // on a cap's plane already
+  };
+  REQUIRE(SupportCreaseLoops(onto.chains, keep, 1e-9, cylinder, &onto.control, &res).ok());
+  CHECK(res.moved == expected);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!beside[v]) continue;
+    const Vec3& y = onto.control.positions[v];
+    CHECK(rim_distance(y) < 0.5 * rim_distance(before.positions[v]));
+    const double r = std::hypot(y.x, y.y);
+    CHECK((std::abs(r - 1.0) < 1e-12 || std::abs(y.z) < 1e-12 || std::abs(y.z - 2.0) < 1e-12));
+  }
+}
+
+TEST_CASE("creases: no support rows beside open chains, and bad fractions are refused") {
+  // A box's twelve edges are open chains between its corners: nothing moves.
+  CreaseRemesh box;
+  RemeshWithCreases(GridCube(6), 300, &box);
+  const std::vector<Vec3> x = box.control.positions;
+  auto identity = [](const Vec3& y) { return y; };
+  CreaseSupportResult res;
+  REQUIRE(SupportCreaseLoops(box.chains, 0.5, 1e-9, identity, &box.control, &res).ok());
+  CHECK(res.loops == 0);
+  CHECK(res.moved == 0);
+  CHECK(box.control.positions == x);
+  // keep 1 moves nothing; outside (0, 1], a negative or infinite tolerance: refused, untouched.
+  CreaseRemesh cyl;
+  RemeshWithCreases(CappedCylinder(32, 4), 300, &cyl);
+  const std::vector<Vec3> y = cyl.control.positions;
+  REQUIRE(SupportCreaseLoops(cyl.chains, 1.0, 1e-9, identity, &cyl.control, &res).ok());
+  CHECK(res.moved == 0);
+  for (double keep : {0.0, -0.5, 1.5, std::nan("")}) {
+    const Status s = SupportCreaseLoops(cyl.chains, keep, 1e-9, identity, &cyl.control, &res);
+    CHECK(s.code() == StatusCode::kInvalidInput);
+    CHECK(s.message().find("crease support") != std::string::npos);
+  }
+  CHECK(!SupportCreaseLoops(cyl.chains, 0.5, -1.0, identity, &cyl.control, &res).ok());
+  CHECK(!SupportCreaseLoops(cyl.chains, 0.5, HUGE_VAL, identity, &cyl.control, &res).ok());
+  CHECK(cyl.control.positions == y);
 }

@@ -11,10 +11,13 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <numeric>
+#include <string>
 
 #include "area_samples.h"
 #include "dermis/offline/build/crease_chains.h"
+#include "dermis/offline/build/crease_support.h"
 #include "dermis/offline/build/reference_surface.h"
 #include "dermis/offline/character/skin_transfer.h"
 #include "dermis/offline/fit/surface_projection.h"
@@ -322,6 +325,38 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // The fits on control meshes without creases (the plain remesh, the simplification) keep
   // options.fit's smoothing and every point at weight 1.
   const FitOptions plain_options = fo;
+  // Support rows beside the part's closed crease loops (CharacterFitOptions::crease_support),
+  // on the crease-keeping control mesh only, after the move onto the shading surface.
+  auto support = std::make_shared<CreaseSupportResult>();
+  if (creases.hard && options.crease_support < 1.0) {
+    auto ref = std::make_shared<ReferenceSurface>();
+    auto chains = std::make_shared<CreaseChains>();
+    auto onto = std::make_shared<TriangleDistanceTree>();
+    std::vector<std::uint32_t> triangles(dense.face_vertices.begin(), dense.face_vertices.end());
+    if (ref->Build(dense.positions, triangles, "crease support").ok() &&
+        onto->Build(dense.positions, triangles)) {
+      chains->Build(*ref, fo.remesh.crease_angle_deg, fo.remesh.corner_turn_deg,
+                    fo.remesh.smooth_edges);
+      // Crease vertices of the remesh lie on the chains to rounding (CreaseChains::Between).
+      const double tolerance = 1e-7 * Diagonal(dense.positions);
+      const double keep = options.crease_support;
+      std::function<void(PolygonMesh*)> then = fo.place_control_vertices;
+      const ShadingSurface* on_shading = shading.curved() ? &shading : nullptr;
+      fo.place_control_vertices = [ref, chains, onto, on_shading, then, tolerance, keep,
+                                   support](PolygonMesh* control) {
+        if (then) then(control);
+        auto project = [&](const Vec3& y) {
+          const ClosestPoint cp = onto->Query(y);
+          if (cp.triangle == kInvalidIndex) return y;
+          if (!on_shading) return cp.point;
+          const double w[3] = {cp.barycentric.x, cp.barycentric.y, cp.barycentric.z};
+          return on_shading->Point(cp.triangle, w);
+        };
+        // keep and the tolerance are checked by FitCharacter: this cannot fail.
+        (void)SupportCreaseLoops(*chains, keep, tolerance, project, control, support.get());
+      };
+    }
+  }
   FitInput input;
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
   if (options.samples_per_control_edge > 0.0) {
@@ -365,6 +400,8 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   }
   Status s = FitSurface(input, fo, fitted, fr);
   if (!s.ok()) return s.message();
+  fr->control_mesh.crease_support_loops = support->loops;
+  fr->control_mesh.crease_support_vertices = support->moved;
   const bool kept_creases =
       fr->control_mesh.method == "remesh" && fr->control_mesh.quality.crease_edges_kept > 0;
   if (crease_fit && !kept_creases) {
@@ -531,6 +568,10 @@ Index MeshSkin(const Asset& asset, std::size_t m) {
 
 Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Character* out,
                     CharacterFitReport* report) {
+  if (!(options.crease_support > 0.0 && options.crease_support <= 1.0)) {
+    return Status::InvalidInput("character fit: crease_support must be in (0, 1], not " +
+                                std::to_string(options.crease_support));
+  }
   const auto t0 = std::chrono::steady_clock::now();
   Character ch;
   ch.asset = asset;

@@ -49,6 +49,10 @@ struct ControlMeshInfo {
   /// Quality of the result (counts, valence-4 share, corner angles; the remesh's own figures
   /// when it made the mesh).
   QuadRemeshReport quality;
+  /// Closed crease loops given support rows, and the control vertices moved towards them
+  /// (CharacterFitOptions::crease_support; 0 where none were placed).
+  int crease_support_loops = 0;
+  int crease_support_vertices = 0;
 };
 
 /// Builds a control mesh from a polygon mesh (faces are fan-triangulated): welds vertices

@@ -1,0 +1,45 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+/// \file
+/// \brief Support rows beside closed crease loops: the control vertices next to a crease loop
+/// (a cap's rim, a sole's edge) are moved towards it, so the smooth domain surface rounds the
+/// crease over a narrower band and the displacement has a smaller step to carry
+/// (docs/characters.md, "Support rows beside crease loops").
+///
+/// This is the modeller's support (holding) edge loop of subdivision modelling, placed on an
+/// existing control mesh: the Ying–Zorin domain surface (Yoon, section 3) is C-infinity, so a
+/// crease kept as control edges is rounded across about one control edge on each side, and a
+/// closer row on each side narrows that rounding.
+#pragma once
+
+#include <functional>
+
+#include "dermis/core/status.h"
+#include "dermis/offline/build/crease_chains.h"
+#include "dermis/offline/geometry/polygon_mesh.h"
+
+namespace dermis {
+
+/// What SupportCreaseLoops() did.
+struct CreaseSupportResult {
+  int loops = 0;  ///< Closed crease loops of the chains with at least one control vertex on them.
+  int moved = 0;  ///< Control vertices moved towards a loop.
+};
+
+/// Moves each control vertex of `control` that shares a control edge with a vertex lying on a
+/// closed chain of `chains` (a loop), and with no vertex of any other crease chain, towards
+/// that loop: from x to c + keep (x - c), c the loop's point closest to x, then onto the
+/// surface by `project` (model units in, model units out). A control vertex lies on a chain
+/// when it is within `tolerance` (model units, >= 0) of it; vertices on a crease, beside two
+/// creases, or beside an open chain (one that ends at corners: there the row would end and
+/// the domain surface ripples, measured in docs/characters.md) are left where they are. Every
+/// vertex is tested against the positions before any move, so the result does not depend on
+/// the vertex order. The faces are not changed.
+///
+/// `keep` in (0, 1]: the fraction of its distance to the loop a moved vertex keeps (1 moves
+/// nothing); InvalidInput otherwise, and for a negative or non-finite tolerance. `chains` must
+/// have been built (CreaseChains::Build) on the surface `control` was made from.
+Status SupportCreaseLoops(const CreaseChains& chains, double keep, double tolerance,
+                          const std::function<Vec3(const Vec3&)>& project, PolygonMesh* control,
+                          CreaseSupportResult* result = nullptr);
+
+}  // namespace dermis

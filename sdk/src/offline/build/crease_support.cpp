@@ -1,0 +1,98 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Support rows beside closed crease loops (docs/characters.md, "Support rows beside crease
+// loops"): the modeller's holding edge loop, placed on a built control mesh so that the
+// C-infinity domain surface (Yoon, section 3, Eq. 1) rounds a kept crease over a narrower band.
+#include "dermis/offline/build/crease_support.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace dermis {
+namespace {
+
+constexpr int kOff = -1;     // not on a crease / beside none
+constexpr int kCorner = -2;  // on two chains at once
+constexpr int kMixed = -3;   // beside two chains, a corner or an open chain
+
+}  // namespace
+
+Status SupportCreaseLoops(const CreaseChains& chains, double keep, double tolerance,
+                          const std::function<Vec3(const Vec3&)>& project, PolygonMesh* control,
+                          CreaseSupportResult* result) {
+  CreaseSupportResult res;
+  if (!(keep > 0.0 && keep <= 1.0)) {
+    return Status::InvalidInput("crease support: the fraction kept must be in (0, 1], not " +
+                                std::to_string(keep));
+  }
+  if (!(tolerance >= 0.0 && std::isfinite(tolerance))) {
+    return Status::InvalidInput("crease support: the tolerance must be finite and >= 0");
+  }
+  if (!control) return Status::InvalidInput("crease support: no control mesh");
+  if (result) *result = res;
+  if (chains.empty() || keep == 1.0) return Status::Ok();
+  const std::size_t n = control->positions.size();
+  const int num_chains = chains.num_chains();
+  // Each chain's bounding box, grown by the tolerance: most vertices are far from most chains.
+  const std::vector<Vec3>& ref = chains.reference_positions();
+  std::vector<Vec3> lo(static_cast<std::size_t>(num_chains)),
+      hi(static_cast<std::size_t>(num_chains));
+  for (int c = 0; c < num_chains; ++c) {
+    Vec3 a(std::numeric_limits<double>::infinity()), b(-std::numeric_limits<double>::infinity());
+    for (Index v : chains.chain(c)) {
+      a = glm::min(a, ref[static_cast<std::size_t>(v)]);
+      b = glm::max(b, ref[static_cast<std::size_t>(v)]);
+    }
+    lo[static_cast<std::size_t>(c)] = a - Vec3(tolerance);
+    hi[static_cast<std::size_t>(c)] = b + Vec3(tolerance);
+  }
+  // The chain each control vertex lies on (kOff, a chain, or kCorner).
+  std::vector<int> on(n, kOff);
+  std::vector<char> loop_used(static_cast<std::size_t>(num_chains), 0);
+  for (std::size_t v = 0; v < n; ++v) {
+    const Vec3& x = control->positions[v];
+    for (int c = 0; c < num_chains; ++c) {
+      const Vec3 &a = lo[static_cast<std::size_t>(c)], &b = hi[static_cast<std::size_t>(c)];
+      if (x.x < a.x || x.y < a.y || x.z < a.z || x.x > b.x || x.y > b.y || x.z > b.z) continue;
+      if (glm::length(x - chains.Project(c, x)) > tolerance) continue;
+      on[v] = on[v] == kOff ? c : kCorner;
+    }
+    if (on[v] >= 0 && chains.closed(on[v])) loop_used[static_cast<std::size_t>(on[v])] = 1;
+  }
+  for (char u : loop_used) res.loops += u;
+  // The one closed chain each vertex is beside, through its control edges.
+  std::vector<int> beside(n, kOff);
+  auto mark = [&](Index v, int chain) {
+    int& b = beside[static_cast<std::size_t>(v)];
+    if (on[static_cast<std::size_t>(v)] != kOff) return;
+    const int c = chain >= 0 && chains.closed(chain) ? chain : kMixed;
+    b = b == kOff || b == c ? c : kMixed;
+  };
+  for (Index f = 0; f < control->num_faces(); ++f) {
+    const Index base = control->face_offsets[static_cast<std::size_t>(f)];
+    const Index size = control->face_size(f);
+    for (Index k = 0; k < size; ++k) {
+      const Index a = control->face_vertices[static_cast<std::size_t>(base + k)];
+      const Index b = control->face_vertices[static_cast<std::size_t>(base + (k + 1) % size)];
+      if (on[static_cast<std::size_t>(a)] != kOff) mark(b, on[static_cast<std::size_t>(a)]);
+      if (on[static_cast<std::size_t>(b)] != kOff) mark(a, on[static_cast<std::size_t>(b)]);
+    }
+  }
+  // Every target from the positions before any move.
+  std::vector<Vec3> moved = control->positions;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (beside[v] < 0) continue;
+    const Vec3& x = control->positions[v];
+    const Vec3 c = chains.Project(beside[v], x);
+    const Vec3 y = project(c + keep * (x - c));
+    if (!std::isfinite(y.x) || !std::isfinite(y.y) || !std::isfinite(y.z)) continue;
+    moved[v] = y;
+    ++res.moved;
+  }
+  control->positions = std::move(moved);
+  if (result) *result = res;
+  return Status::Ok();
+}
+
+}  // namespace dermis
