@@ -391,8 +391,10 @@ void RemeshWithCreases(const TriMesh& m, int target, CreaseRemesh* out) {
 
 TEST_CASE("creases: support rows move the vertices beside a closed loop towards it") {
   // The capped cylinder's two rims are closed loops. Every control vertex off the rims that
-  // shares a control edge with a rim vertex keeps `keep` of its distance to the rim polygon
-  // (identity projection: exactly), every other vertex stays where it was.
+  // shares a control edge with rim vertices goes straight towards the rim point c closest to
+  // it, keeping `keep` of its distance (identity projection: exactly); one whose rim
+  // neighbours surround it, or whose c is further from its nearest rim neighbour than it is,
+  // stays, and so does every other vertex.
   CreaseRemesh cr;
   RemeshWithCreases(CappedCylinder(32, 4), 300, &cr);
   const PolygonMesh before = cr.control;
@@ -400,17 +402,51 @@ TEST_CASE("creases: support rows move the vertices beside a closed loop towards 
   auto rim_distance = [](const Vec3& p) {
     return std::min(PolygonDistance(p, 32, 0.0), PolygonDistance(p, 32, 2.0));
   };
-  std::vector<char> on_rim(n, 0), beside(n, 0);
+  std::vector<char> on_rim(n, 0);
   for (std::size_t v = 0; v < n; ++v) on_rim[v] = rim_distance(before.positions[v]) < 1e-9;
+  std::vector<std::vector<Vec3>> rim_neighbors(n);
   for (const auto& e : Edges(before)) {
     const std::size_t a = static_cast<std::size_t>(e[0]), b = static_cast<std::size_t>(e[1]);
-    if (on_rim[a] && !on_rim[b]) beside[b] = 1;
-    if (on_rim[b] && !on_rim[a]) beside[a] = 1;
+    if (on_rim[a] && !on_rim[b]) rim_neighbors[b].push_back(before.positions[a]);
+    if (on_rim[b] && !on_rim[a]) rim_neighbors[a].push_back(before.positions[b]);
   }
-  int expected = 0;
-  for (char c : beside) expected += c;
-  REQUIRE(expected > 32);  // a row on the side and one on each cap
+  // The expected targets, computed here from the rule, with the rim polygon's closest point.
   const double keep = 0.4;
+  std::vector<char> moves(n, 0);
+  std::vector<Vec3> target(n);
+  int expected = 0, skipped = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    const std::vector<Vec3>& r = rim_neighbors[v];
+    if (r.empty()) continue;
+    const Vec3& x = before.positions[v];
+    Vec3 mean(0.0), near(0.0);
+    double d = 0.0, nearest = 1e300;
+    for (const Vec3& y : r) {
+      mean += y, d += glm::length(y - x);
+      if (glm::length(y - x) < nearest) nearest = glm::length(y - x), near = y;
+    }
+    mean /= static_cast<double>(r.size());
+    d /= static_cast<double>(r.size());
+    const double z = r[0].z;  // the rim its neighbours lie on
+    Vec3 c(0.0);
+    double best = 1e300;
+    for (int i = 0; i < 32; ++i) {
+      const double a0 = 2.0 * kPi * i / 32, a1 = 2.0 * kPi * (i + 1) / 32;
+      const Vec3 p(std::cos(a0), std::sin(a0), z), q(std::cos(a1), std::sin(a1), z);
+      const double u = std::clamp(glm::dot(x - p, q - p) / glm::dot(q - p, q - p), 0.0, 1.0);
+      const Vec3 w = p + u * (q - p);
+      if (glm::length(x - w) < best) best = glm::length(x - w), c = w;
+    }
+    if (glm::length(mean - x) < 0.5 * d || glm::length(c - near) > nearest) {
+      ++skipped;
+      continue;
+    }
+    moves[v] = 1;
+    target[v] = c + keep * (x - c);
+    ++expected;
+  }
+  INFO(expected << " vertices to move, " << skipped << " left");
+  REQUIRE(expected > 4 * 16);  // a row on the side and one on the cap, at both rims
   CreaseSupportResult res;
   auto identity = [](const Vec3& y) { return y; };
   REQUIRE(SupportCreaseLoops(cr.chains, keep, 1e-9, identity, &cr.control, &res).ok());
@@ -419,16 +455,16 @@ TEST_CASE("creases: support rows move the vertices beside a closed loop towards 
   CHECK(cr.control.face_vertices == before.face_vertices);
   for (std::size_t v = 0; v < n; ++v) {
     const Vec3 &x = before.positions[v], &y = cr.control.positions[v];
-    if (!beside[v]) {
+    if (!moves[v]) {
       CHECK(y == x);
       continue;
     }
     INFO("vertex " << v << " at " << x.x << " " << x.y << " " << x.z);
+    CHECK(glm::length(y - target[v]) < 1e-9);
     CHECK(rim_distance(y) == Approx(keep * rim_distance(x)).epsilon(1e-9));
-    // Towards the rim it was beside: the same side of the cylinder and closer to it.
-    CHECK(std::abs(y.z - (x.z < 1.0 ? 0.0 : 2.0)) <= std::abs(x.z - (x.z < 1.0 ? 0.0 : 2.0)));
   }
-  // A projection that puts every target back onto the cylinder: still closer to the rim.
+  // A projection that puts every target back onto the cylinder: the same vertices move, onto
+  // the cylinder, closer to their rim.
   CreaseRemesh onto;
   RemeshWithCreases(CappedCylinder(32, 4), 300, &onto);
   auto cylinder = [](const Vec3& y) {
@@ -439,9 +475,9 @@ TEST_CASE("creases: support rows move the vertices beside a closed loop towards 
   REQUIRE(SupportCreaseLoops(onto.chains, keep, 1e-9, cylinder, &onto.control, &res).ok());
   CHECK(res.moved == expected);
   for (std::size_t v = 0; v < n; ++v) {
-    if (!beside[v]) continue;
+    if (!moves[v]) continue;
     const Vec3& y = onto.control.positions[v];
-    CHECK(rim_distance(y) < 0.5 * rim_distance(before.positions[v]));
+    CHECK(rim_distance(y) < rim_distance(before.positions[v]));
     const double r = std::hypot(y.x, y.y);
     CHECK((std::abs(r - 1.0) < 1e-12 || std::abs(y.z) < 1e-12 || std::abs(y.z - 2.0) < 1e-12));
   }
@@ -472,4 +508,31 @@ TEST_CASE("creases: no support rows beside open chains, and bad fractions are re
   CHECK(!SupportCreaseLoops(cyl.chains, 0.5, -1.0, identity, &cyl.control, &res).ok());
   CHECK(!SupportCreaseLoops(cyl.chains, 0.5, HUGE_VAL, identity, &cyl.control, &res).ok());
   CHECK(cyl.control.positions == y);
+  // A face naming a vertex out of range is refused before anything moves.
+  PolygonMesh broken = cyl.control;
+  broken.face_vertices[0] = static_cast<Index>(broken.positions.size());
+  const Status s = SupportCreaseLoops(cyl.chains, 0.5, 1e-9, identity, &broken, &res);
+  CHECK(s.code() == StatusCode::kInvalidInput);
+  CHECK(broken.positions == y);
+  // A rim vertex at NaN is on no chain and has no side to move to: no neighbour moves towards
+  // it (every other position stays finite), and it stays NaN. A projection that gives NaN
+  // leaves its vertex where it was.
+  PolygonMesh nan_rim = cyl.control;
+  std::size_t rim = 0;
+  while (rim < y.size() && !(PolygonDistance(y[rim], 32, 0.0) < 1e-9)) ++rim;
+  REQUIRE(rim < y.size());
+  nan_rim.positions[rim] = Vec3(std::nan(""));
+  REQUIRE(SupportCreaseLoops(cyl.chains, 0.5, 1e-9, identity, &nan_rim, &res).ok());
+  CHECK(res.moved > 0);
+  CHECK(std::isnan(nan_rim.positions[rim].x));
+  for (std::size_t v = 0; v < y.size(); ++v) {
+    if (v == rim) continue;
+    const Vec3& p = nan_rim.positions[v];
+    CHECK((std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)));
+  }
+  PolygonMesh nan_target = cyl.control;
+  auto to_nan = [](const Vec3&) { return Vec3(std::nan("")); };
+  REQUIRE(SupportCreaseLoops(cyl.chains, 0.5, 1e-9, to_nan, &nan_target, &res).ok());
+  CHECK(res.moved == 0);
+  CHECK(nan_target.positions == y);
 }

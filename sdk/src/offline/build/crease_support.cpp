@@ -30,9 +30,15 @@ Status SupportCreaseLoops(const CreaseChains& chains, double keep, double tolera
     return Status::InvalidInput("crease support: the tolerance must be finite and >= 0");
   }
   if (!control) return Status::InvalidInput("crease support: no control mesh");
+  const std::size_t n = control->positions.size();
+  for (Index v : control->face_vertices) {
+    if (v < 0 || static_cast<std::size_t>(v) >= n) {
+      return Status::InvalidInput("crease support: a face names vertex " + std::to_string(v) +
+                                  " of " + std::to_string(n));
+    }
+  }
   if (result) *result = res;
   if (chains.empty() || keep == 1.0) return Status::Ok();
-  const std::size_t n = control->positions.size();
   const int num_chains = chains.num_chains();
   // Each chain's bounding box, grown by the tolerance: most vertices are far from most chains.
   const std::vector<Vec3>& ref = chains.reference_positions();
@@ -55,7 +61,7 @@ Status SupportCreaseLoops(const CreaseChains& chains, double keep, double tolera
     for (int c = 0; c < num_chains; ++c) {
       const Vec3 &a = lo[static_cast<std::size_t>(c)], &b = hi[static_cast<std::size_t>(c)];
       if (x.x < a.x || x.y < a.y || x.z < a.z || x.x > b.x || x.y > b.y || x.z > b.z) continue;
-      if (glm::length(x - chains.Project(c, x)) > tolerance) continue;
+      if (!(glm::length(x - chains.Project(c, x)) <= tolerance)) continue;  // NaN: not on it
       on[v] = on[v] == kOff ? c : kCorner;
     }
     if (on[v] >= 0 && chains.closed(on[v])) loop_used[static_cast<std::size_t>(on[v])] = 1;
@@ -79,12 +85,50 @@ Status SupportCreaseLoops(const CreaseChains& chains, double keep, double tolera
       if (on[static_cast<std::size_t>(b)] != kOff) mark(a, on[static_cast<std::size_t>(b)]);
     }
   }
-  // Every target from the positions before any move.
+  // Each vertex's neighbours on its loop, through its control edges (each once).
+  std::vector<std::vector<Index>> ring(n);
+  auto add = [&](Index v, Index w) {
+    std::vector<Index>& r = ring[static_cast<std::size_t>(v)];
+    if (beside[static_cast<std::size_t>(v)] < 0) return;
+    for (Index u : r) {
+      if (u == w) return;
+    }
+    r.push_back(w);
+  };
+  for (Index f = 0; f < control->num_faces(); ++f) {
+    const Index base = control->face_offsets[static_cast<std::size_t>(f)];
+    const Index size = control->face_size(f);
+    for (Index k = 0; k < size; ++k) {
+      const Index a = control->face_vertices[static_cast<std::size_t>(base + k)];
+      const Index b = control->face_vertices[static_cast<std::size_t>(base + (k + 1) % size)];
+      if (on[static_cast<std::size_t>(a)] >= 0) add(b, a);
+      if (on[static_cast<std::size_t>(b)] >= 0) add(a, b);
+    }
+  }
+  // Every target from the positions before any move: straight towards the loop's point c
+  // closest to the vertex. It stays where its neighbours on the loop surround it (their mean
+  // within half their mean distance of it, as a small cap's centre joined to its rim: no side
+  // to move to), and where c is further from its nearest neighbour on the loop than the vertex
+  // is (c on another stretch of the loop, across a narrow waist).
   std::vector<Vec3> moved = control->positions;
   for (std::size_t v = 0; v < n; ++v) {
-    if (beside[v] < 0) continue;
+    if (beside[v] < 0 || ring[v].empty()) continue;
     const Vec3& x = control->positions[v];
+    Vec3 mean(0.0);
+    double mean_distance = 0.0;
+    double nearest = std::numeric_limits<double>::infinity();
+    Vec3 nearest_point(0.0);
+    for (Index w : ring[v]) {
+      const Vec3& y = control->positions[static_cast<std::size_t>(w)];
+      const double d = glm::length(y - x);
+      mean += y;
+      mean_distance += d;
+      if (d < nearest) nearest = d, nearest_point = y;
+    }
+    const double k = static_cast<double>(ring[v].size());
+    if (!(glm::length(mean / k - x) >= 0.5 * mean_distance / k)) continue;  // NaN: stays
     const Vec3 c = chains.Project(beside[v], x);
+    if (!(glm::length(c - nearest_point) <= nearest)) continue;
     const Vec3 y = project(c + keep * (x - c));
     if (!std::isfinite(y.x) || !std::isfinite(y.y) || !std::isfinite(y.z)) continue;
     moved[v] = y;

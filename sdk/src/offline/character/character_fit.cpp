@@ -326,7 +326,9 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // options.fit's smoothing and every point at weight 1.
   const FitOptions plain_options = fo;
   // Support rows beside the part's closed crease loops (CharacterFitOptions::crease_support),
-  // on the crease-keeping control mesh only, after the move onto the shading surface.
+  // on the crease-keeping control mesh only. They run first, on the remesh's own positions
+  // (its crease vertices on the chains, everything on the flat triangles), and the move onto
+  // the shading surface and the caller's hook follow.
   auto support = std::make_shared<CreaseSupportResult>();
   if (creases.hard && options.crease_support < 1.0) {
     auto ref = std::make_shared<ReferenceSurface>();
@@ -341,19 +343,16 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
       const double tolerance = 1e-7 * Diagonal(dense.positions);
       const double keep = options.crease_support;
       std::function<void(PolygonMesh*)> then = fo.place_control_vertices;
-      const ShadingSurface* on_shading = shading.curved() ? &shading : nullptr;
-      fo.place_control_vertices = [ref, chains, onto, on_shading, then, tolerance, keep,
+      fo.place_control_vertices = [ref, chains, onto, then, tolerance, keep,
                                    support](PolygonMesh* control) {
-        if (then) then(control);
         auto project = [&](const Vec3& y) {
           const ClosestPoint cp = onto->Query(y);
-          if (cp.triangle == kInvalidIndex) return y;
-          if (!on_shading) return cp.point;
-          const double w[3] = {cp.barycentric.x, cp.barycentric.y, cp.barycentric.z};
-          return on_shading->Point(cp.triangle, w);
+          return cp.triangle == kInvalidIndex ? y : cp.point;
         };
-        // keep and the tolerance are checked by FitCharacter: this cannot fail.
+        // keep and the tolerance are checked by FitCharacter, and the remesh's faces name its
+        // vertices: this cannot fail.
         (void)SupportCreaseLoops(*chains, keep, tolerance, project, control, support.get());
+        if (then) then(control);
       };
     }
   }

@@ -123,10 +123,11 @@ struct CharacterFitOptions {
   double vertex_weight = 8.0;
   /// On a control mesh that keeps creases: the control vertices beside a closed crease loop (a
   /// cap's rim, a sole's edge; SupportCreaseLoops) are moved towards it, keeping this fraction
-  /// of their distance, so the smooth domain surface rounds the crease over a narrower band and
-  /// the rim comes out clean instead of notched (docs/characters.md, "Support rows beside crease
-  /// loops"; RiggedSimple's Hausdorff 0.67 % -> 0.41 %). Open chains get none: rows that end at
-  /// a chain's corners rippled RiggedFigure's and the Fox's flat sides. In (0, 1]; 1: off.
+  /// of their distance, before the move onto the shading surface, so the smooth domain surface
+  /// rounds the crease over a narrower band and the rim comes out clean instead of notched
+  /// (docs/characters.md, "Support rows beside crease loops"; RiggedSimple's Hausdorff 0.67 % ->
+  /// 0.41 %). Open chains get none: rows beside them rippled RiggedFigure's and the Fox's flat
+  /// sides. In (0, 1]; 1: off; anything else is refused by FitCharacter.
   double crease_support = 0.5;
   /// With remesh_creases, also fit each component whose control mesh kept creases on the
   /// remesh without them, and keep the crease-aware fit only where its two-sided Hausdorff

@@ -84,8 +84,10 @@ struct FitOptions {
   /// Called on a control mesh built from the data (not a given one) before its domain surface
   /// is made; may move its vertices, not change its faces or their count (refused). Empty:
   /// none. FitCharacter sets it on every part with a curved shading surface, moving the
-  /// vertices onto it (CharacterFitOptions::shading_shape); the report's control-mesh quality
-  /// is measured before the move.
+  /// vertices onto it (CharacterFitOptions::shading_shape), and on a crease-keeping control
+  /// mesh with closed crease loops, moving the vertices beside them towards them first
+  /// (CharacterFitOptions::crease_support); a hook the caller set runs after both. The
+  /// report's control-mesh quality is measured before the moves.
   std::function<void(PolygonMesh* control)> place_control_vertices;
 };
 
