@@ -40,7 +40,7 @@ struct FitArgs {
   double smoothing = -1.0;
   int control_fit = -1;  // -1: the library's default for the input kind
   double patch_agreement = FitOptions{}.control_fit.patch_agreement;
-  double noisy_ratio = FitOptions{}.control_fit_noisy_ratio;
+  double noisy_ratio = -1.0;  // -1: the library's default for the input kind
   int clean_rounds = FitOptions{}.control_fit_clean_iterations;
   bool no_cover_boundary = !FitOptions{}.cover_boundary;
   std::string method;  // empty: the library's default for the input kind
@@ -319,7 +319,7 @@ int RunFitCharacter(const FitArgs& a) {
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit_clean_iterations = a.clean_rounds;
   options.fit.control_fit.patch_agreement = a.patch_agreement;
-  options.fit.control_fit_noisy_ratio = a.noisy_ratio;
+  if (a.noisy_ratio >= 0.0) options.fit.control_fit_noisy_ratio = a.noisy_ratio;
   options.fit.cover_boundary = !a.no_cover_boundary;
   options.fit.threads = a.threads;
   ProgressBar progress(kFitCommand, a.quiet);
@@ -412,7 +412,7 @@ int RunFit(const FitArgs& a) {
   if (a.control_fit >= 0) options.control_fit_iterations = a.control_fit;
   options.control_fit_clean_iterations = a.clean_rounds;
   options.control_fit.patch_agreement = a.patch_agreement;
-  options.control_fit_noisy_ratio = a.noisy_ratio;
+  if (a.noisy_ratio >= 0.0) options.control_fit_noisy_ratio = a.noisy_ratio;
   options.cover_boundary = !a.no_cover_boundary;
   options.holdout = a.holdout;
   options.threads = a.threads;
@@ -562,7 +562,8 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
          "Rounds of fitting the built control mesh's vertices to the data (0: keep "
          "them on the data; " +
              DefaultText(surface.control_fit_iterations, character.control_fit_iterations) +
-             "; a --control-mesh is always used as is)")
+             "; a --control-mesh is always used as is; characters: on parts without hard "
+             "creases only)")
       ->check(CLI::Range(0, 16));
   cmd->add_option("--patch-agreement", args->patch_agreement,
                   "Control-vertex fit: weight of the corner patches' agreement with each other "
@@ -570,13 +571,14 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "farther; docs/fitting.md)")
       ->check(CLI::Range(0.0, 1e3))
       ->capture_default_str();
-  cmd->add_option("--noisy-ratio", args->noisy_ratio,
-                  "Control-vertex fit: the data's estimated noise, over its spacing, at which the "
-                  "fit is regularised in full (--patch-agreement and the tangent damping); less "
-                  "noisy data slides more freely, over more rounds (0: always in full; "
-                  "docs/fitting.md, \"Noise-adaptive control fit\")")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+  cmd->add_option(
+         "--noisy-ratio", args->noisy_ratio,
+         "Control-vertex fit: the data's estimated noise, over its spacing, at which the "
+         "fit is regularised in full (--patch-agreement and the tangent damping); less "
+         "noisy data slides more freely, over more rounds (0: always in full; " +
+             DefaultText(surface.control_fit_noisy_ratio, character.control_fit_noisy_ratio) +
+             "; docs/fitting.md, \"Noise-adaptive control fit\")")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--clean-rounds", args->clean_rounds,
                   "Control-vertex fit: rounds on data below the clean noise ratio (an exact "
                   "tessellation); noisy data runs --control-fit rounds, data between the two "

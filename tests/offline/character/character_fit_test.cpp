@@ -639,7 +639,9 @@ TEST_CASE("character: a smooth-shaded tube follows its shading surface") {
   INFO("mean distance from the unit cylinder: flat samples "
        << facets << ", on the shading " << shaded << " (capped " << capped << "), flat-shaded tube "
        << flat_shaded);
-  // Measured 0.048, 0.0048 (0.041 capped) and 0.048.
+  // Measured 0.050, 0.0062 (0.043 capped) and 0.048; before the smooth-shaded tube got the
+  // control-vertex fit (CharacterFitOptions::fit, parts without hard creases) 0.048, 0.0048
+  // and 0.041.
   CHECK(facets > 0.03);
   CHECK(shaded < 0.25 * facets);
   CHECK(capped < facets);

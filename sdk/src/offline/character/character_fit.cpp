@@ -302,6 +302,19 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     creases = TestCreases(dense, fo.remesh);
   }
   fo.clamp_control_vertices = true;
+  // The control-vertex fit (options.fit's rounds) runs on a part without hard creases
+  // (organic, or every sharp edge shaded smooth) only: it knows nothing of creases and pulls a
+  // crease-keeping control mesh's vertices off them (docs/characters.md, "The control-vertex
+  // fit on parts without hard creases"). Whether a part has hard creases does not depend on
+  // remesh_creases.
+  CreaseTest part_creases = creases;
+  if (!options.remesh_creases && fo.control_fit_iterations > 0) {
+    QuadRemeshOptions test = fo.remesh;
+    test.crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
+    test.smooth_edges = smooth_edges;
+    part_creases = TestCreases(dense, test);
+  }
+  if (part_creases.hard) fo.control_fit_iterations = 0;
   // Every fit of the part follows its shading surface: the samples between the vertices lie
   // on it, and the control vertices are moved onto it from the flat triangles where the
   // control mesh put them (the domain surface interpolates them, and would keep the facets).
