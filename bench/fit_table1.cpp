@@ -900,12 +900,13 @@ int RunCharacters(const Settings& st) {
       std::printf(
           "  %s part %zu: %s, %d control vertices (target %d), valence 4 %.1f%%, corners "
           "%.1f..%.1f deg; creases: %d of %d source edges kept, %d chains (%d closed), %d "
-          "control crease edges; support rows: %d loops, %d vertices moved%s%s\n",
+          "control crease edges; support rows: %d loops, %d vertices moved; control-vertex "
+          "fit: %d rounds%s%s\n",
           name, p, c.method.c_str(), c.quality.vertices, c.quality.target_vertices,
           100.0 * c.quality.valence4_share, c.quality.min_corner_angle_deg,
           c.quality.max_corner_angle_deg, c.quality.crease_edges_kept, c.quality.crease_edges,
           c.quality.crease_chains, c.quality.crease_closed_chains, c.quality.control_crease_edges,
-          c.crease_support_loops, c.crease_support_vertices,
+          c.crease_support_loops, c.crease_support_vertices, c.control_fit_rounds,
           c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str());
     }
   }

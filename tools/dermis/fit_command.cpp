@@ -276,6 +276,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   Json meshes = Json::array();
   for (std::size_t p = 0; p < r.part_control_meshes.size(); ++p) {
     nlohmann::ordered_json m = ControlMeshJson(r.part_control_meshes[p]);
+    m["control_fit_rounds"] = r.part_control_meshes[p].control_fit_rounds;
     const std::string note = p < r.part_notes.size() ? r.part_notes[p] : std::string();
     m["note"] = note.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(note);
     meshes.push_back(m);

@@ -305,8 +305,11 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // The control-vertex fit (options.fit's rounds) runs on a part without hard creases
   // (organic, or every sharp edge shaded smooth) only: it knows nothing of creases and pulls a
   // crease-keeping control mesh's vertices off them (docs/characters.md, "The control-vertex
-  // fit on parts without hard creases"). Whether a part has hard creases does not depend on
-  // remesh_creases.
+  // fit on parts without hard creases"). A part with hard creases runs it in none of its fits:
+  // not on the crease-keeping control mesh, nor on the plain remesh compared with it or fitted
+  // instead of it (with the rounds, those lost to the crease-keeping fits without them on
+  // RiggedSimple and the Fox), nor with remesh_creases off. Whether a part has hard creases
+  // does not depend on remesh_creases.
   CreaseTest part_creases = creases;
   if (!options.remesh_creases && fo.control_fit_iterations > 0) {
     QuadRemeshOptions test = fo.remesh;
@@ -481,6 +484,7 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
       *kept_simplified = note;
     }
   }
+  fr->control_mesh.control_fit_rounds = static_cast<int>(fr->control_fit_rounds);
   return std::string();
 }
 

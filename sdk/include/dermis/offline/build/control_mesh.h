@@ -53,6 +53,9 @@ struct ControlMeshInfo {
   /// (CharacterFitOptions::crease_support; 0 where none were placed).
   int crease_support_loops = 0;
   int crease_support_vertices = 0;
+  /// Rounds of the control-vertex fit its vertices went through (characters: the parts without
+  /// hard creases, CharacterFitOptions::fit; FitReport::control_fit_rounds for a surface).
+  int control_fit_rounds = 0;
 };
 
 /// Builds a control mesh from a polygon mesh (faces are fan-triangulated): welds vertices
