@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -195,29 +196,46 @@ TEST_CASE("pipeline: CesiumMan fit, exported bound and lod, judged", "[pipeline]
   CheckCharacterPipeline("CesiumMan.glb");
 }
 
+/// Two fits of the shared asset `name`, with the defaults (2 threads) and with `tweak` applied
+/// to them; false (with a warning) where ../shared/data is absent.
+struct TwoFits {
+  Asset asset;
+  Character a, b;
+  CharacterFitReport ra, rb;
+};
+bool FitTwice(const std::string& name, const std::function<void(CharacterFitOptions*)>& tweak,
+              TwoFits* out) {
+  const std::string source = std::string(test::kSharedGltfDir) + name;
+  if (!fs::exists(source)) {
+    WARN("skipped: " << source << " is absent (../shared/data)");
+    return false;
+  }
+  REQUIRE(ImportGltf(source, &out->asset).ok());
+  CharacterFitOptions with;
+  with.fit.threads = 2;
+  CharacterFitOptions without = with;
+  tweak(&without);
+  REQUIRE(FitCharacter(out->asset, with, &out->a, &out->ra).ok());
+  REQUIRE(FitCharacter(out->asset, without, &out->b, &out->rb).ok());
+  REQUIRE(out->ra.part_control_meshes.size() == 1);
+  REQUIRE(out->rb.part_control_meshes.size() == 1);
+  return true;
+}
+
 TEST_CASE("pipeline: RiggedSimple's cap rims get support rows and the surface follows them",
           "[data][heavy]") {
   // The Khronos asset itself (docs/characters.md, "Support rows beside crease loops"): its two
   // cap rims are hard crease loops kept as control edges; with the default support rows the
   // part's two-sided Hausdorff distance (level 8 against its triangles) falls from 0.67 % to
   // 0.41 % of the bounding-box diagonal (bench_fit --rows characters).
-  const std::string source = std::string(test::kSharedGltfDir) + "RiggedSimple.glb";
-  if (!fs::exists(source)) {
-    WARN("skipped: " << source << " is absent (../shared/data)");
+  TwoFits t;
+  if (!FitTwice(
+          "RiggedSimple.glb", [](CharacterFitOptions* o) { o->crease_support = 1.0; }, &t)) {
     return;
   }
-  Asset asset;
-  REQUIRE(ImportGltf(source, &asset).ok());
-  CharacterFitOptions with;
-  with.fit.threads = 2;
-  CharacterFitOptions without = with;
-  without.crease_support = 1.0;
-  Character a, b;
-  CharacterFitReport ra, rb;
-  REQUIRE(FitCharacter(asset, with, &a, &ra).ok());
-  REQUIRE(FitCharacter(asset, without, &b, &rb).ok());
-  REQUIRE(ra.part_control_meshes.size() == 1);
-  REQUIRE(rb.part_control_meshes.size() == 1);
+  const Asset& asset = t.asset;
+  const Character &a = t.a, &b = t.b;
+  const CharacterFitReport &ra = t.ra, &rb = t.rb;
   CHECK(ra.part_control_meshes[0].crease_support_loops == 2);
   CHECK(ra.part_control_meshes[0].crease_support_vertices >= 32);
   CHECK(rb.part_control_meshes[0].crease_support_vertices == 0);
@@ -238,21 +256,13 @@ TEST_CASE(
   // and runs the default 2 rounds; without them (rounds 0) its two-sided Hausdorff distance is
   // 0.42 % of the diagonal, with them 0.33 % (bench_fit --rows characters). The control mesh is
   // the same (2,058 vertices).
-  const std::string source = std::string(test::kSharedGltfDir) + "CesiumMan.glb";
-  if (!fs::exists(source)) {
-    WARN("skipped: " << source << " is absent (../shared/data)");
+  TwoFits t;
+  if (!FitTwice(
+          "CesiumMan.glb", [](CharacterFitOptions* o) { o->fit.control_fit_iterations = 0; }, &t)) {
     return;
   }
-  Asset asset;
-  REQUIRE(ImportGltf(source, &asset).ok());
-  CharacterFitOptions with;
-  with.fit.threads = 2;
-  CharacterFitOptions without = with;
-  without.fit.control_fit_iterations = 0;
-  Character a, b;
-  CharacterFitReport ra, rb;
-  REQUIRE(FitCharacter(asset, with, &a, &ra).ok());
-  REQUIRE(FitCharacter(asset, without, &b, &rb).ok());
+  const Character &a = t.a, &b = t.b;
+  const CharacterFitReport &ra = t.ra, &rb = t.rb;
   REQUIRE(a.parts.size() == 1);
   REQUIRE(b.parts.size() == 1);
   CHECK(a.parts[0].surface.rest_positions.size() == b.parts[0].surface.rest_positions.size());

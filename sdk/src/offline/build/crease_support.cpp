@@ -16,6 +16,20 @@ constexpr int kOff = -1;     // not on a crease / beside none
 constexpr int kCorner = -2;  // on two chains at once
 constexpr int kMixed = -3;   // beside two chains, a corner or an open chain
 
+// Calls fn(a, b) for each side (a, b) of each face of `m`, in face order (an interior edge
+// twice, once from each face).
+template <typename Fn>
+void ForEachEdge(const PolygonMesh& m, Fn fn) {
+  for (Index f = 0; f < m.num_faces(); ++f) {
+    const Index base = m.face_offsets[static_cast<std::size_t>(f)];
+    const Index size = m.face_size(f);
+    for (Index k = 0; k < size; ++k) {
+      fn(m.face_vertices[static_cast<std::size_t>(base + k)],
+         m.face_vertices[static_cast<std::size_t>(base + (k + 1) % size)]);
+    }
+  }
+}
+
 }  // namespace
 
 Status SupportCreaseLoops(const CreaseChains& chains, double keep, double tolerance,
@@ -75,16 +89,10 @@ Status SupportCreaseLoops(const CreaseChains& chains, double keep, double tolera
     const int c = chain >= 0 && chains.closed(chain) ? chain : kMixed;
     b = b == kOff || b == c ? c : kMixed;
   };
-  for (Index f = 0; f < control->num_faces(); ++f) {
-    const Index base = control->face_offsets[static_cast<std::size_t>(f)];
-    const Index size = control->face_size(f);
-    for (Index k = 0; k < size; ++k) {
-      const Index a = control->face_vertices[static_cast<std::size_t>(base + k)];
-      const Index b = control->face_vertices[static_cast<std::size_t>(base + (k + 1) % size)];
-      if (on[static_cast<std::size_t>(a)] != kOff) mark(b, on[static_cast<std::size_t>(a)]);
-      if (on[static_cast<std::size_t>(b)] != kOff) mark(a, on[static_cast<std::size_t>(b)]);
-    }
-  }
+  ForEachEdge(*control, [&](Index a, Index b) {
+    if (on[static_cast<std::size_t>(a)] != kOff) mark(b, on[static_cast<std::size_t>(a)]);
+    if (on[static_cast<std::size_t>(b)] != kOff) mark(a, on[static_cast<std::size_t>(b)]);
+  });
   // Each vertex's neighbours on its loop, through its control edges (each once).
   std::vector<std::vector<Index>> ring(n);
   auto add = [&](Index v, Index w) {
@@ -95,16 +103,10 @@ Status SupportCreaseLoops(const CreaseChains& chains, double keep, double tolera
     }
     r.push_back(w);
   };
-  for (Index f = 0; f < control->num_faces(); ++f) {
-    const Index base = control->face_offsets[static_cast<std::size_t>(f)];
-    const Index size = control->face_size(f);
-    for (Index k = 0; k < size; ++k) {
-      const Index a = control->face_vertices[static_cast<std::size_t>(base + k)];
-      const Index b = control->face_vertices[static_cast<std::size_t>(base + (k + 1) % size)];
-      if (on[static_cast<std::size_t>(a)] >= 0) add(b, a);
-      if (on[static_cast<std::size_t>(b)] >= 0) add(a, b);
-    }
-  }
+  ForEachEdge(*control, [&](Index a, Index b) {
+    if (on[static_cast<std::size_t>(a)] >= 0) add(b, a);
+    if (on[static_cast<std::size_t>(b)] >= 0) add(a, b);
+  });
   // Every target from the positions before any move: straight towards the loop's point c
   // closest to the vertex. It stays where its neighbours on the loop surround it (their mean
   // within half their mean distance of it, as a small cap's centre joined to its rim: no side
