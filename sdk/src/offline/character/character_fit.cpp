@@ -104,24 +104,27 @@ VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalP
 
 /// The remesher's own crease test (CreaseChains on a ReferenceSurface, at the remesh options'
 /// angles) on `mesh` (a triangle mesh), built once: whether it finds any crease ignoring
-/// remesh.smooth_edges (`sharp`), and whether any is left once they are excluded (`hard`). Both
-/// false where the mesh cannot be a reference surface (the remesh then falls back and keeps
-/// none either).
+/// remesh.smooth_edges (`sharp`), and whether any is left once they are excluded (`hard`; then
+/// `chains` holds those, on `ref`, for the support rows). Both false where the mesh cannot be a
+/// reference surface (the remesh then falls back and keeps none either).
 struct CreaseTest {
   bool sharp = false, hard = false;
+  std::shared_ptr<const ReferenceSurface> ref;
+  std::shared_ptr<const CreaseChains> chains;
 };
 CreaseTest TestCreases(const PolygonMesh& mesh, const QuadRemeshOptions& remesh) {
   std::vector<std::uint32_t> triangles(mesh.face_vertices.begin(), mesh.face_vertices.end());
-  ReferenceSurface ref;
+  auto ref = std::make_shared<ReferenceSurface>();
   CreaseTest t;
-  if (!ref.Build(mesh.positions, triangles, "crease test").ok()) return t;
-  CreaseChains creases;
-  creases.Build(ref, remesh.crease_angle_deg, remesh.corner_turn_deg);
-  t.sharp = !creases.edges().empty();
+  if (!ref->Build(mesh.positions, triangles, "crease test").ok()) return t;
+  auto creases = std::make_shared<CreaseChains>();
+  creases->Build(*ref, remesh.crease_angle_deg, remesh.corner_turn_deg);
+  t.sharp = !creases->edges().empty();
   if (t.sharp) {
-    creases.Build(ref, remesh.crease_angle_deg, remesh.corner_turn_deg, remesh.smooth_edges);
-    t.hard = !creases.edges().empty();
+    creases->Build(*ref, remesh.crease_angle_deg, remesh.corner_turn_deg, remesh.smooth_edges);
+    t.hard = !creases->edges().empty();
   }
+  if (t.hard) t.ref = std::move(ref), t.chains = std::move(creases);
   return t;
 }
 
@@ -294,13 +297,21 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   const std::vector<std::array<std::uint32_t, 2>>& smooth_edges =
       options.creases_follow_shading ? shading.smooth_edges() : no_edges;
   // Whether the part turns sharply anywhere (shaded smooth or not), and whether a hard crease
-  // is left for the control mesh to keep.
-  CreaseTest creases;
-  if (options.remesh_creases) {
-    fo.remesh.crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
-    fo.remesh.smooth_edges = smooth_edges;
-    creases = TestCreases(dense, fo.remesh);
+  // is left (the remesher's test, whatever remesh_creases says); `creases` is that where the
+  // control mesh keeps them.
+  const double crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
+  CreaseTest part_creases;
+  if (options.remesh_creases || fo.control_fit_iterations > 0) {
+    QuadRemeshOptions test = fo.remesh;
+    test.crease_angle_deg = crease_angle_deg;
+    test.smooth_edges = smooth_edges;
+    part_creases = TestCreases(dense, test);
   }
+  if (options.remesh_creases) {
+    fo.remesh.crease_angle_deg = crease_angle_deg;
+    fo.remesh.smooth_edges = smooth_edges;
+  }
+  const CreaseTest creases = options.remesh_creases ? part_creases : CreaseTest();
   fo.clamp_control_vertices = true;
   // The control-vertex fit (options.fit's rounds) runs on a part without hard creases
   // (organic, or every sharp edge shaded smooth) only: it knows nothing of creases and pulls a
@@ -308,69 +319,57 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // fit on parts without hard creases"). A part with hard creases runs it in none of its fits:
   // not on the crease-keeping control mesh, nor on the plain remesh compared with it or fitted
   // instead of it (with the rounds, those lost to the crease-keeping fits without them on
-  // RiggedSimple and the Fox), nor with remesh_creases off. Whether a part has hard creases
-  // does not depend on remesh_creases.
-  CreaseTest part_creases = creases;
-  if (!options.remesh_creases && fo.control_fit_iterations > 0) {
-    QuadRemeshOptions test = fo.remesh;
-    test.crease_angle_deg = options.crease_angle * 180.0 / 3.14159265358979323846;
-    test.smooth_edges = smooth_edges;
-    part_creases = TestCreases(dense, test);
-  }
+  // RiggedSimple and the Fox), nor with remesh_creases off.
   if (part_creases.hard) fo.control_fit_iterations = 0;
+  // Support rows beside the part's closed crease loops (CharacterFitOptions::crease_support),
+  // on the crease-keeping control mesh only.
+  const bool supported = creases.hard && options.crease_support < 1.0;
+  // The part's triangles, for the moves of its control vertices below.
+  auto tree = std::make_shared<TriangleDistanceTree>();
+  if (shading.curved() || supported) {
+    std::vector<std::uint32_t> triangles(dense.face_vertices.begin(), dense.face_vertices.end());
+    if (!tree->Build(dense.positions, triangles)) tree.reset();
+  }
   // Every fit of the part follows its shading surface: the samples between the vertices lie
   // on it, and the control vertices are moved onto it from the flat triangles where the
   // control mesh put them (the domain surface interpolates them, and would keep the facets).
-  TriangleDistanceTree tree;
-  if (shading.curved()) {
-    std::vector<std::uint32_t> triangles(dense.face_vertices.begin(), dense.face_vertices.end());
-    if (tree.Build(dense.positions, triangles)) {
-      // A hook the caller gave runs after the move.
-      std::function<void(PolygonMesh*)> then = options.fit.place_control_vertices;
-      fo.place_control_vertices = [&tree, &shading, then](PolygonMesh* control) {
-        for (Vec3& x : control->positions) {
-          const ClosestPoint cp = tree.Query(x);
-          if (cp.triangle == kInvalidIndex) continue;
-          const double w[3] = {cp.barycentric.x, cp.barycentric.y, cp.barycentric.z};
-          x = shading.Point(cp.triangle, w);
-        }
-        if (then) then(control);
-      };
-    }
+  if (shading.curved() && tree) {
+    // A hook the caller gave runs after the move.
+    std::function<void(PolygonMesh*)> then = options.fit.place_control_vertices;
+    fo.place_control_vertices = [tree, &shading, then](PolygonMesh* control) {
+      for (Vec3& x : control->positions) {
+        const ClosestPoint cp = tree->Query(x);
+        if (cp.triangle == kInvalidIndex) continue;
+        const double w[3] = {cp.barycentric.x, cp.barycentric.y, cp.barycentric.z};
+        x = shading.Point(cp.triangle, w);
+      }
+      if (then) then(control);
+    };
   }
   // The fits on control meshes without creases (the plain remesh, the simplification) keep
   // options.fit's smoothing and every point at weight 1.
   const FitOptions plain_options = fo;
-  // Support rows beside the part's closed crease loops (CharacterFitOptions::crease_support),
-  // on the crease-keeping control mesh only. They run first, on the remesh's own positions
-  // (its crease vertices on the chains, everything on the flat triangles), and the move onto
-  // the shading surface and the caller's hook follow.
+  // The support rows run first, on the remesh's own positions (its crease vertices on the
+  // chains, everything on the flat triangles); the move onto the shading surface and the
+  // caller's hook follow.
   auto support = std::make_shared<CreaseSupportResult>();
-  if (creases.hard && options.crease_support < 1.0) {
-    auto ref = std::make_shared<ReferenceSurface>();
-    auto chains = std::make_shared<CreaseChains>();
-    auto onto = std::make_shared<TriangleDistanceTree>();
-    std::vector<std::uint32_t> triangles(dense.face_vertices.begin(), dense.face_vertices.end());
-    if (ref->Build(dense.positions, triangles, "crease support").ok() &&
-        onto->Build(dense.positions, triangles)) {
-      chains->Build(*ref, fo.remesh.crease_angle_deg, fo.remesh.corner_turn_deg,
-                    fo.remesh.smooth_edges);
-      // Crease vertices of the remesh lie on the chains to rounding (CreaseChains::Between).
-      const double tolerance = 1e-7 * Diagonal(dense.positions);
-      const double keep = options.crease_support;
-      std::function<void(PolygonMesh*)> then = fo.place_control_vertices;
-      fo.place_control_vertices = [ref, chains, onto, then, tolerance, keep,
-                                   support](PolygonMesh* control) {
-        auto project = [&](const Vec3& y) {
-          const ClosestPoint cp = onto->Query(y);
-          return cp.triangle == kInvalidIndex ? y : cp.point;
-        };
-        // keep and the tolerance are checked by FitCharacter, and the remesh's faces name its
-        // vertices: this cannot fail.
-        (void)SupportCreaseLoops(*chains, keep, tolerance, project, control, support.get());
-        if (then) then(control);
+  if (supported && tree) {
+    // Crease vertices of the remesh lie on the chains to rounding (CreaseChains::Between).
+    const double tolerance = 1e-7 * Diagonal(dense.positions);
+    const double keep = options.crease_support;
+    std::function<void(PolygonMesh*)> then = fo.place_control_vertices;
+    fo.place_control_vertices = [ref = creases.ref, chains = creases.chains, tree, then, tolerance,
+                                 keep, support](PolygonMesh* control) {
+      auto project = [&](const Vec3& y) {
+        const ClosestPoint cp = tree->Query(y);
+        return cp.triangle == kInvalidIndex ? y : cp.point;
       };
-    }
+      (void)ref;  // the chains' surface, kept alive with them
+      // keep and the tolerance are checked by FitCharacter, and the remesh's faces name its
+      // vertices: this cannot fail.
+      (void)SupportCreaseLoops(*chains, keep, tolerance, project, control, support.get());
+      if (then) then(control);
+    };
   }
   FitInput input;
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
