@@ -246,6 +246,29 @@ if(NOT before STREQUAL after)
 endif()
 expect_run(0 "" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/torus.png --force -q
            --size 64x64)
+# --wireframe draws the control edges, `level` segments each: a closed all-quad mesh has twice
+# as many edges as vertices (Euler: V - E + F = 0 with 4F = 2E), so the torus's count comes from
+# the fit report's control vertices, independently of the drawing; the picture differs from the
+# plain one of the same view.
+string(JSON torus_cv GET "${report}" control_vertices)
+math(EXPR torus_segments "2 * ${torus_cv} * 3")
+execute_process(COMMAND ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/wire.png
+                --size 200x160 --level 3 --wireframe RESULT_VARIABLE code ERROR_VARIABLE err)
+if(NOT code EQUAL 0 OR NOT err MATCHES
+   "wireframe: ${torus_segments} segments drawn, ${torus_segments} on the control edges")
+  message(FATAL_ERROR "--wireframe on the torus (${torus_cv} control vertices) must draw "
+                      "${torus_segments} segments (exit ${code}):\n${err}")
+endif()
+expect_png(${WORK}/pic/wire.png 2000)
+expect_run(0 "" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/plain3.png
+           --size 200x160 --level 3 -q)
+file(SHA256 ${WORK}/pic/wire.png wire_sha)
+file(SHA256 ${WORK}/pic/plain3.png plain_sha)
+if(wire_sha STREQUAL plain_sha)
+  message(FATAL_ERROR "--wireframe drew nothing over the torus")
+endif()
+expect_run(2 "--wireframe needs --level 2" ${DERMIS} render ${WORK}/fit/torus.dsurf
+           -o ${WORK}/pic/x.png --level 1 --wireframe)
 expect_run(2 "needs --reference" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/x.png
            --heatmap error)
 expect_run(2 "\\.png" ${DERMIS} render ${WORK}/fit/torus.dsurf -o ${WORK}/pic/x.jpg)
@@ -424,3 +447,18 @@ if(EXISTS ${ch}/bad_three.png)
   message(FATAL_ERROR "a refused render wrote ch/bad_three.png")
 endif()
 expect_run(1 "no clip" ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/x.png --clip walk)
+# The character's control edges in lod mode: every part's, `level` segments each.
+execute_process(COMMAND ${DERMIS} render ${ch}/skin.dsurf -o ${ch}/wire.png --size 96x96
+                --mode lod --level 2 --wireframe RESULT_VARIABLE code ERROR_VARIABLE err)
+if(NOT code EQUAL 0 OR NOT err MATCHES "wireframe: ([0-9]+) segments drawn, ([0-9]+) on the")
+  message(FATAL_ERROR "--wireframe on the character (exit ${code}):\n${err}")
+endif()
+set(wire_drawn "${CMAKE_MATCH_1}")
+set(wire_expected "${CMAKE_MATCH_2}")
+if(NOT wire_drawn EQUAL wire_expected OR wire_drawn EQUAL 0)
+  message(FATAL_ERROR "--wireframe on the character drew ${wire_drawn} segments of "
+                      "${wire_expected}:\n${err}")
+endif()
+expect_png(${ch}/wire.png 1000)
+expect_run(2 "--wireframe on a character needs --mode lod" ${DERMIS} render ${ch}/skin.dsurf
+           -o ${ch}/x.png --wireframe)

@@ -52,7 +52,8 @@ struct RenderArgs {
   bool frame_files = false;
   double fps = kDefaultPoseStepsPerSecond;
   std::string caption;
-  std::string series;  // surfaces: displacement levels, one view each
+  std::string series;      // surfaces: displacement levels, one view each
+  bool wireframe = false;  // control-mesh edges over the tessellation
   bool force = false;
   bool quiet = false;
 };
@@ -79,6 +80,47 @@ float ErrorRange(const std::vector<render::Mesh>& meshes) {
       std::min(all.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(all.size())));
   std::nth_element(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(k), all.end());
   return all[k] > 0.0f ? all[k] : 1.0f;
+}
+
+// On an edge of its control face: one face coordinate exactly 0 or 1 (the tessellation puts
+// vertex and edge samples there, face samples strictly inside).
+template <class Location>
+bool OnControlEdge(const Location& s) {
+  return s.u == 0.0 || s.u == 1.0 || s.v == 0.0 || s.v == 1.0;
+}
+
+// The edges of `triangles` whose two ends lie on control edges (of the same part, `on_edge`
+// decides): at 2 or more segments per face edge these are the control edges' segments, since
+// every cell's diagonal has an end inside its face (docs/cli.md, "render"). Each once.
+template <class OnEdge>
+std::vector<std::uint32_t> ControlEdgeLines(const std::vector<std::uint32_t>& triangles,
+                                            const OnEdge& on_edge) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = triangles[t + k], b = triangles[t + (k + 1) % 3];
+      if (on_edge(a, b)) edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<std::uint32_t> lines;
+  lines.reserve(2 * edges.size());
+  for (const auto& [a, b] : edges) {
+    lines.push_back(a);
+    lines.push_back(b);
+  }
+  return lines;
+}
+
+// Prints the segments drawn and the control edges' segments there are (level per edge): the
+// two agree unless a control edge went missing or a diagonal was taken for one.
+void ReportWireframe(const std::vector<render::Mesh>& meshes, std::size_t expected, bool quiet) {
+  if (quiet) return;
+  std::size_t drawn = 0;
+  for (const render::Mesh& m : meshes) drawn += m.lines.size() / 2;
+  std::fprintf(stderr, "dermis render: wireframe: %zu segments drawn, %zu on the control edges\n",
+               drawn, expected);
 }
 
 // A surface (version 1 or 3) tessellated at `level` with `displacement_levels` (-1: all).
@@ -108,13 +150,21 @@ Status SurfaceMesh(const RenderArgs& a, const DisplacedSurface& surface, int dis
     m.normals.push_back(F(nrm[i]));
   }
   m.triangles = pattern.triangles;
+  if (a.wireframe) {
+    const std::vector<SampleLocation>& smp = pattern.samples;
+    m.lines = ControlEdgeLines(m.triangles, [&](std::uint32_t i, std::uint32_t j) {
+      return i < smp.size() && j < smp.size() && OnControlEdge(smp[i]) && OnControlEdge(smp[j]);
+    });
+  }
   out->push_back(std::move(m));
   return Status::Ok();
 }
 
 // The posed primitives of a character as render meshes (triangles only).
+// With `wireframe`, the lod tessellation's control edges as lines.
 std::vector<render::Mesh> PosedMeshes(const CharacterPoser& poser,
-                                      const std::vector<PosedPrimitive>& posed) {
+                                      const std::vector<PosedPrimitive>& posed,
+                                      bool wireframe = false) {
   std::vector<render::Mesh> meshes;
   for (std::size_t d = 0; d < posed.size(); ++d) {
     const DrawnPrimitive& dp = poser.drawn()[d];
@@ -125,6 +175,13 @@ std::vector<render::Mesh> PosedMeshes(const CharacterPoser& poser,
     m.triangles = PrimitiveTriangles(prim);
     for (const Vec3& p : posed[d].positions) m.positions.push_back(F(p));
     for (const Vec3& n : posed[d].normals) m.normals.push_back(F(n));
+    if (wireframe) {
+      const std::vector<VertexBinding>& loc = poser.surface_locations(d);
+      m.lines = ControlEdgeLines(m.triangles, [&](std::uint32_t i, std::uint32_t j) {
+        return i < loc.size() && j < loc.size() && loc[i].part >= 0 && loc[i].part == loc[j].part &&
+               OnControlEdge(loc[i]) && OnControlEdge(loc[j]);
+      });
+    }
     meshes.push_back(std::move(m));
   }
   return meshes;
@@ -263,6 +320,12 @@ int RenderSurface(const RenderArgs& a, const DisplacedSurface& surface, render::
     view.scalar_max = range;  // one scale for every level
     view.legend = "distance to data";
   }
+  if (a.wireframe) {
+    ReportWireframe(surfaces[0],
+                    static_cast<std::size_t>(surface.domain->topology().num_edges()) *
+                        static_cast<std::size_t>(a.level),
+                    a.quiet);
+  }
   const int views = std::max(1, a.turntable);
   ProgressBar bar(kRenderCommand, a.quiet);
   for (std::size_t k = 0; k < levels.size(); ++k) {
@@ -304,6 +367,11 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
                     std::vector<render::Image>* images) {
   render::View& view = *view_out;
   const bool error_map = a.heatmap == "error";
+  if (a.wireframe && a.mode != "lod") {
+    return Usage(kRenderCommand,
+                 "--wireframe on a character needs --mode lod (the bound mode draws the "
+                 "original triangles)");
+  }
   std::vector<std::string> captions;
   int clip = -1;
   Status s = ResolveClip(ch.asset, a.input, a.clip, &clip);
@@ -362,7 +430,7 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
       std::vector<PosedPrimitive> posed;
       s = posers[k].PoseClip(clip, t, a.fps, &posed);
       if (!s.ok()) return Fail(kRenderCommand, s);
-      std::vector<render::Mesh> meshes = PosedMeshes(posers[k], posed);
+      std::vector<render::Mesh> meshes = PosedMeshes(posers[k], posed, a.wireframe);
       std::size_t at = 0;
       for (render::Mesh& m : meshes) {
         if (error_map) {
@@ -381,6 +449,17 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
       std::snprintf(cap, sizeof(cap), "%s t=%.2fs", deformers[k].c_str(), t);
       captions.push_back(clip >= 0 ? std::string(cap) : deformers[k] + " rest");
     }
+  }
+  if (a.wireframe && !frames.empty()) {
+    std::size_t expected = 0;  // every drawn part's control edges, `level` segments each
+    for (std::size_t d = 0; d < poser.drawn().size(); ++d) {
+      const std::vector<VertexBinding>& loc = poser.surface_locations(d);
+      if (loc.empty() || loc[0].part < 0) continue;
+      const DisplacedSurface& surf = ch.parts[static_cast<std::size_t>(loc[0].part)].surface;
+      expected += static_cast<std::size_t>(surf.domain->topology().num_edges()) *
+                  static_cast<std::size_t>(a.level);
+    }
+    ReportWireframe(frames[0], expected, a.quiet);
   }
   view.frame = box;  // one scale for every frame
   const int views = std::max(1, a.turntable);
@@ -409,6 +488,11 @@ int RunRender(const RenderArgs& a) {
     return Usage(kRenderCommand, "--frames and --turntable exclude each other");
   if (!a.compare.empty() && a.turntable > 0)
     return Usage(kRenderCommand, "--compare and --turntable exclude each other");
+  if (a.wireframe && a.level < 2) {
+    return Usage(kRenderCommand,
+                 "--wireframe needs --level 2 or more (the control edges are the tessellation's "
+                 "face borders)");
+  }
   if (const int rc = CheckOverwrite(kRenderCommand, {a.output}, a.force); rc != kExitOk) return rc;
   std::string bytes;
   {
@@ -532,6 +616,9 @@ void AddRenderCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--series", args->series,
                   "Surfaces: one view per displacement level listed (e.g. 0,2,4,-1; -1: all), "
                   "as a contact sheet; with --heatmap error each is captioned with its error");
+  cmd->add_flag("--wireframe", args->wireframe,
+                "Draw the control mesh's edges on the tessellated surface (surfaces; characters "
+                "with --mode lod; --level 2 or more)");
   cmd->add_flag("-f,--force", args->force, "Overwrite output files that exist");
   AddQuietFlag(cmd, &args->quiet);
   CLI::Option* time = cmd->get_option("--time");

@@ -179,6 +179,11 @@ Image Render(const std::vector<Mesh>& meshes, const View& view) {
   std::vector<float> depth(static_cast<std::size_t>(w) * h, -1e30f);
   std::vector<glm::vec3> color(depth.size(), view.background);
   const float range = view.scalar_max - view.scalar_min;
+  struct Segment {
+    glm::vec3 a, b;  // screen x, y and depth
+    glm::vec3 color;
+  };
+  std::vector<Segment> segments;
   for (const Mesh& m : meshes) {
     const std::size_t nv = m.positions.size();
     std::vector<glm::vec3> sp(nv);  // screen x, y and depth (larger is nearer)
@@ -186,6 +191,11 @@ Image Render(const std::vector<Mesh>& meshes, const View& view) {
       const glm::vec3 d = m.positions[i] - f.center;
       sp[i] = glm::vec3(f.cx + f.scale * glm::dot(d, f.right), f.cy - f.scale * glm::dot(d, f.up),
                         glm::dot(d, f.back));
+    }
+    for (std::size_t l = 0; l + 1 < m.lines.size(); l += 2) {
+      const std::uint32_t ia = m.lines[l], ib = m.lines[l + 1];
+      if (ia >= nv || ib >= nv) continue;
+      segments.push_back({sp[ia], sp[ib], m.line_color});
     }
     const bool has_scalar = m.scalar.size() == nv;
     const bool has_normals = m.normals.size() == nv;
@@ -222,6 +232,30 @@ Image Render(const std::vector<Mesh>& meshes, const View& view) {
           const glm::vec3 n =
               has_normals ? w0 * m.normals[ia] + w1 * m.normals[ib] + w2 * m.normals[ic] : face_n;
           color[k] = Shade(n, base, f);
+        }
+      }
+    }
+  }
+  // Segments after every triangle, so that the depth test sees the whole surface: a square
+  // of side `ss` (one output pixel) every half sample along the segment, where its depth is
+  // within a small bias of the nearest surface there (the segments lie on that surface).
+  const float bias = 0.004f * glm::length(box.hi - box.lo);
+  for (const Segment& g : segments) {
+    const glm::vec3 d = g.b - g.a;
+    const float len = std::max(std::fabs(d.x), std::fabs(d.y));
+    if (!std::isfinite(len)) continue;
+    const int steps = std::max(1, static_cast<int>(std::ceil(2.0f * len)));
+    const int half = ss / 2;
+    for (int k = 0; k <= steps; ++k) {
+      const glm::vec3 p = g.a + d * (static_cast<float>(k) / static_cast<float>(steps));
+      const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
+      for (int y = py - half; y < py - half + ss; ++y) {
+        if (y < 0 || y >= h) continue;
+        for (int x = px - half; x < px - half + ss; ++x) {
+          if (x < 0 || x >= w) continue;
+          const std::size_t at = static_cast<std::size_t>(y) * w + x;
+          if (p.z + bias < depth[at]) continue;
+          color[at] = g.color;
         }
       }
     }

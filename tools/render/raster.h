@@ -23,6 +23,10 @@ struct Mesh {
   /// Optional: one value per vertex, shown through the colour map instead of `color`.
   std::vector<float> scalar;
   glm::vec3 color{0.86f, 0.70f, 0.60f};
+  /// Optional: segments drawn over the triangles (2 indices each), where they are not hidden
+  /// by a triangle nearer the camera: the control mesh of a tessellated surface.
+  std::vector<std::uint32_t> lines;
+  glm::vec3 line_color{0.10f, 0.10f, 0.13f};
 };
 
 /// An axis-aligned box; empty when lo > hi.

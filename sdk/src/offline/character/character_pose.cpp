@@ -103,6 +103,17 @@ CharacterPoser& CharacterPoser::operator=(CharacterPoser&&) noexcept = default;
 const Asset& CharacterPoser::asset() const { return state_->asset; }
 const std::vector<DrawnPrimitive>& CharacterPoser::drawn() const { return state_->drawn; }
 const CharacterPoseOptions& CharacterPoser::options() const { return state_->options; }
+const std::vector<VertexBinding>& CharacterPoser::surface_locations(std::size_t drawn_index) const {
+  static const std::vector<VertexBinding> kNone;
+  const State& st = *state_;
+  if (drawn_index >= st.drawn.size()) return kNone;
+  const DrawnPrimitive& dp = st.drawn[drawn_index];
+  const auto m = static_cast<std::size_t>(dp.mesh);
+  const auto p = static_cast<std::size_t>(dp.primitive);
+  if (dp.mesh < 0 || m >= st.sources.size() || dp.primitive < 0 || p >= st.sources[m].size())
+    return kNone;
+  return st.sources[m][p];
+}
 
 namespace {
 

@@ -93,6 +93,11 @@ class CharacterPoser {
   const Asset& asset() const;
   const std::vector<DrawnPrimitive>& drawn() const;
   const CharacterPoseOptions& options() const;
+  /// Where each vertex of drawn() primitive `drawn_index` lies on a fitted part's surface:
+  /// `lod`, the tessellation sample (vertex i is the part pattern's sample i); `bound`, the
+  /// original vertex's binding (part < 0 for a vertex of an unfitted part). Empty for a
+  /// primitive that no part replaces, or an index out of range. Owned by the poser.
+  const std::vector<VertexBinding>& surface_locations(std::size_t drawn_index) const;
 
   /// Takes a pose of asset() (one history step of the sweep): world and skin matrices, and each
   /// deformer's SetPose(). Fails, naming the skin and joint, on a matrix that is not invertible.
