@@ -876,6 +876,7 @@ int main(int argc, char** argv) {
   bool characters = true, cylinder = true, real_rigs = true, clips = true;
   int level = 4;
   std::string only, pictures;
+  double input_quads = -1.0;
   for (int i = 1; i < argc; ++i) {
     const auto next = [&](const char* flag) -> const char* {
       if (i + 1 >= argc) {
@@ -908,14 +909,16 @@ int main(int argc, char** argv) {
       pictures = next("--pictures");
     } else if (std::strcmp(argv[i], "--only") == 0) {
       only = next("--only");
+    } else if (std::strcmp(argv[i], "--input-quads") == 0) {
+      input_quads = std::atof(next("--input-quads"));
     } else if (std::strcmp(argv[i], "--level") == 0) {
       level = std::atoi(next("--level"));
     } else {
-      std::fprintf(
-          stderr,
-          "usage: bench_deform [--spacing D] [--voxel RATIO] [--ring-points N] "
-          "[--twist-step DEG] [--frames F] [--data DIR] [--level L] [--no-characters] "
-          "[--no-cylinder] [--no-real-rigs] [--no-clips] [--only NAME] [--pictures DIR]\n");
+      std::fprintf(stderr,
+                   "usage: bench_deform [--spacing D] [--voxel RATIO] [--ring-points N] "
+                   "[--twist-step DEG] [--frames F] [--data DIR] [--level L] [--no-characters] "
+                   "[--no-cylinder] [--no-real-rigs] [--no-clips] [--only NAME] [--pictures DIR] "
+                   "[--input-quads R]\n");
       return 2;
     }
   }
@@ -947,6 +950,7 @@ int main(int argc, char** argv) {
     o.clip_frames = frames;
     o.clips = clips;
     o.only = only;
+    o.input_quads = input_quads;
     o.pictures = pictures;
     std::printf("\n");
     bench::RunRealRigs(o);

@@ -307,6 +307,7 @@ Status FitAndPose(const std::string& path, const RealRigOptions& o, Fitted* f) {
   if (!s.ok()) return s;
   CharacterFitOptions cfo;
   cfo.fit.threads = o.threads;
+  if (o.input_quads >= 0.0) cfo.input_quads = o.input_quads;
   s = FitCharacter(asset, cfo, &f->character, nullptr);
   if (!s.ok()) return s;
   for (std::size_t k = 0; k < kKinds.size(); ++k) {

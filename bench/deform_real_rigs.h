@@ -10,12 +10,13 @@ namespace dermis::bench {
 
 /// Settings of the real-rig part of bench_deform.
 struct RealRigOptions {
-  std::string data;         ///< Folder of the shared glTF files.
-  int level = 4;            ///< Tessellation level of the lod surface (dermis animate default).
-  double twist_step = 5.0;  ///< Degrees per frame of the animated 0..360 degree twist.
-  int clip_frames = 60;     ///< Evenly spaced times per clip of the fitted-clip table.
-  bool clips = true;        ///< Also every clip of every character on the fitted surface.
-  int threads = 2;          ///< Threads of the fits and evaluations (results do not vary).
+  std::string data;           ///< Folder of the shared glTF files.
+  int level = 4;              ///< Tessellation level of the lod surface (dermis animate default).
+  double twist_step = 5.0;    ///< Degrees per frame of the animated 0..360 degree twist.
+  int clip_frames = 60;       ///< Evenly spaced times per clip of the fitted-clip table.
+  bool clips = true;          ///< Also every clip of every character on the fitted surface.
+  int threads = 2;            ///< Threads of the fits and evaluations (results do not vary).
+  double input_quads = -1.0;  ///< CharacterFitOptions::input_quads; < 0: its default.
   std::string only;
   /// Non-empty: a folder for contact sheets of the limb tests (one PNG per test: a row per
   /// deformer, a column per pose).

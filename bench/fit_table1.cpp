@@ -33,6 +33,7 @@
 //                             [--shading-max-move M] (its largest move, of the diagonal)
 //                             [--vertex-weight W] (characters' vertices against one sample)
 //                             [--creases-ignore-shading] (smooth-shaded sharp edges are creases)
+//                             [--input-quads R] (characters: the input's own quads; 0: off)
 //                             [--crease-support K] (support rows beside closed crease loops; 1:
 //                             off)
 //                             [--detail] [--mba]
@@ -198,6 +199,7 @@ struct Settings {
   bool no_crease_remesh = false;  ///< --no-crease-remesh: the remesh ignores creases.
   bool creases_ignore_shading = false;  ///< --creases-ignore-shading: smooth-shaded creases too.
   double crease_support = -1.0;         ///< --crease-support K; -1: CharacterFitOptions' default
+  double input_quads = -1.0;            ///< --input-quads R; -1: CharacterFitOptions' default
   int compare_without_creases = -1;     ///< --compare-without-creases 0|1 (-1: the default).
   int compare_simplified = -1;          ///< --compare-simplified 0|1 (-1: the default).
   ControlMeshMethod method = ControlMeshMethod::kRemesh;
@@ -265,8 +267,9 @@ void PrintControlMesh(const char* name, const FitReport& r) {
   if (c.method == "remesh") {
     std::printf(
         "control mesh (%s): seed %d vertices -> isotropic %d vertices -> %d quads + %d "
-        "triangles -> split\n",
-        name, q.seed_vertices, q.triangle_vertices, q.quads_paired, q.triangles_unpaired);
+        "triangles -> split%s\n",
+        name, q.seed_vertices, q.triangle_vertices, q.quads_paired, q.triangles_unpaired,
+        q.input_quads ? " (replaced by the input's own quads)" : "");
   }
   std::printf(
       "control-vertex fit (%s): %lld rounds, data noise %.3g of the spacing -> regularisation "
@@ -803,6 +806,7 @@ int RunCharacters(const Settings& st) {
     if (st.no_crease_remesh) options.remesh_creases = false;
     if (st.creases_ignore_shading) options.creases_follow_shading = false;
     if (st.crease_support >= 0.0) options.crease_support = st.crease_support;
+    if (st.input_quads >= 0.0) options.input_quads = st.input_quads;
     if (st.compare_without_creases >= 0)
       options.compare_without_creases = st.compare_without_creases != 0;
     if (st.compare_simplified >= 0) options.compare_simplified = st.compare_simplified != 0;
@@ -901,13 +905,17 @@ int RunCharacters(const Settings& st) {
           "  %s part %zu: %s, %d control vertices (target %d), valence 4 %.1f%%, corners "
           "%.1f..%.1f deg; creases: %d of %d source edges kept, %d chains (%d closed), %d "
           "control crease edges; support rows: %d loops, %d vertices moved; control-vertex "
-          "fit: %d rounds%s%s\n",
+          "fit: %d rounds%s%s%s\n",
           name, p, c.method.c_str(), c.quality.vertices, c.quality.target_vertices,
           100.0 * c.quality.valence4_share, c.quality.min_corner_angle_deg,
           c.quality.max_corner_angle_deg, c.quality.crease_edges_kept, c.quality.crease_edges,
           c.quality.crease_chains, c.quality.crease_closed_chains, c.quality.control_crease_edges,
           c.crease_support_loops, c.crease_support_vertices, c.control_fit_rounds,
-          c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str());
+          c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str(),
+          c.quality.input_quads ? ("; the input's own quads (the remesh had " +
+                                   std::to_string(c.quality.remesh_vertices) + " vertices)")
+                                      .c_str()
+                                : "");
     }
   }
   return 0;
@@ -988,6 +996,8 @@ int main(int argc, char** argv) {
       st.compare_without_creases = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--no-crease-remesh") == 0) {
       st.no_crease_remesh = true;
+    } else if (std::strcmp(argv[i], "--input-quads") == 0 && i + 1 < argc) {
+      st.input_quads = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--crease-support") == 0 && i + 1 < argc) {
       st.crease_support = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--creases-ignore-shading") == 0) {

@@ -61,6 +61,7 @@ struct FitArgs {
   double vertex_weight = CharacterFitOptions{}.vertex_weight;
   bool creases_ignore_shading = false;
   double crease_support = CharacterFitOptions{}.crease_support;
+  double input_quads = CharacterFitOptions{}.input_quads;
   bool refit = false;
   // Options given on the command line that only one kind of input takes (set at parse time):
   // a fit of the other kind refuses them instead of ignoring them.
@@ -102,6 +103,8 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
     m["triangle_vertices"] = q.triangle_vertices;
     m["quads_paired"] = q.quads_paired;
     m["triangles_unpaired"] = q.triangles_unpaired;
+    m["input_quads"] = q.input_quads;
+    if (q.input_quads) m["remesh_vertices"] = q.remesh_vertices;
     if (q.crease_edges > 0) {
       m["crease_edges"] = q.crease_edges;
       m["crease_edges_kept"] = q.crease_edges_kept;
@@ -254,6 +257,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   options_json["vertex-weight"] = options.vertex_weight;
   options_json["creases-ignore-shading"] = !options.creases_follow_shading;
   options_json["crease-support"] = options.crease_support;
+  options_json["input-quads"] = options.input_quads;
   options_json["refit"] = a.refit;
   Json j;
   StartReport(&j, "dermis.fit-character/1", std::move(options_json));
@@ -316,6 +320,7 @@ int RunFitCharacter(const FitArgs& a) {
   options.vertex_weight = a.vertex_weight;
   options.creases_follow_shading = !a.creases_ignore_shading;
   options.crease_support = a.crease_support;
+  options.input_quads = a.input_quads;
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit_clean_iterations = a.clean_rounds;
@@ -633,6 +638,22 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "out clean (1: off; docs/characters.md, \"Support rows beside crease loops\")")
       ->check(CLI::Range(0.01, 1.0))
       ->capture_default_str();
+  cmd->add_option("--input-quads", args->input_quads,
+                  "Characters: a part modelled in quads gets its own quads back as its control "
+                  "mesh where every triangle pairs and they number 1 to this many times the "
+                  "remesh's vertices (0: off; docs/characters.md, \"The input's own quads\")")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            double r = -1.0;
+            try {
+              r = std::stod(value);
+            } catch (...) {
+            }
+            return r == 0.0 || (r >= 1.0 && r <= 1e6) ? std::string()
+                                                      : std::string("must be 0 or in [1, 1e6]");
+          },
+          "0|R>=1"))
+      ->capture_default_str();
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
@@ -650,8 +671,9 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         for (const char* name : {"--control-vertices", "--control-mesh", "--holdout"}) {
           if (cmd->count(name) > 0) args->surface_only.push_back(name);
         }
-        for (const char* name : {"--control-ratio", "--shading-shape", "--shading-max-move",
-                                 "--crease-smoothing", "--vertex-weight", "--crease-support"}) {
+        for (const char* name :
+             {"--control-ratio", "--shading-shape", "--shading-max-move", "--crease-smoothing",
+              "--vertex-weight", "--crease-support", "--input-quads"}) {
           if (cmd->count(name) > 0) args->character_only.push_back(name);
         }
         if (args->refit) args->character_only.push_back("--refit");  // --refit=false is fine

@@ -347,6 +347,114 @@ TEST_CASE("quad remesh: a closed surface, an open cylinder, two components, fans
   }
 }
 
+TEST_CASE("quad remesh: a mesh modelled in quads gets its own quads back") {
+  // The open cylinder of 24 x 12 quads, each exported as two triangles: 312 vertices, 288
+  // quads, every interior vertex of valence 4 (docs/fitting.md, "The input's own quads").
+  const PolygonMesh cyl = Cylinder(24, 12, 1.0, 3.0, false);
+  const std::vector<std::uint32_t> tris = Triangles(cyl);
+  auto remesh = [&](const std::vector<Vec3>& positions, const std::vector<std::uint32_t>& t,
+                    int target, double ratio, PolygonMesh* out, QuadRemeshReport* r) {
+    QuadRemeshOptions options;
+    options.target_vertices = target;
+    options.input_quads_max_ratio = ratio;
+    REQUIRE(QuadRemesh(positions, t, "cylinder", options, out, r).ok());
+  };
+  // Off by default: the remesh at the target.
+  PolygonMesh plain, own;
+  QuadRemeshReport rp, ro;
+  remesh(cyl.positions, tris, 250, 0.0, &plain, &rp);
+  CHECK_FALSE(rp.input_quads);
+  CHECK(std::abs(plain.num_vertices() - 250) <= 33);
+  // 312 is between the remesh's count and 1.5 times it: the cylinder's own 288 quads, each of
+  // them one of its grid cells, at the input's own positions.
+  remesh(cyl.positions, tris, 250, 1.5, &own, &ro);
+  REQUIRE(ro.input_quads);
+  CheckRemesh(cyl, own, ro, 1, 2);
+  CHECK(ro.remesh_vertices == plain.num_vertices());
+  CHECK(own.num_vertices() == 312);
+  REQUIRE(own.num_faces() == 288);
+  CHECK(ro.valence4_share == 1.0);
+  std::set<std::set<Index>> cells;
+  for (int j = 0; j < 12; ++j) {
+    for (int i = 0; i < 24; ++i) {
+      cells.insert(
+          {j * 24 + i, j * 24 + (i + 1) % 24, (j + 1) * 24 + (i + 1) % 24, (j + 1) * 24 + i});
+    }
+  }
+  for (Index f = 0; f < own.num_faces(); ++f) {
+    REQUIRE(own.face_size(f) == 4);
+    std::set<Index> quad;
+    for (Index k = 0; k < 4; ++k) {
+      const Index v = own.face_vertices[static_cast<std::size_t>(own.face_offsets[f] + k)];
+      CHECK(own.positions[static_cast<std::size_t>(v)] ==
+            cyl.positions[static_cast<std::size_t>(v)]);
+      quad.insert(v);
+    }
+    CHECK(cells.count(quad) == 1);
+  }
+  // Too many vertices for the count the remesh needs (more than 1.5 times it), or too few:
+  // the remesh.
+  PolygonMesh m;
+  QuadRemeshReport r;
+  remesh(cyl.positions, tris, 150, 1.5, &m, &r);
+  CHECK_FALSE(r.input_quads);
+  remesh(cyl.positions, tris, 400, 1.5, &m, &r);
+  CHECK_FALSE(r.input_quads);
+  // A triangle that cannot pair (a boundary edge split in two makes the count odd): the remesh.
+  std::vector<Vec3> odd = cyl.positions;
+  std::vector<std::uint32_t> odd_tris = tris;
+  // The first triangle (0, 1, 25) has the bottom rim's edge (0, 1): split it at its midpoint.
+  REQUIRE(odd_tris[0] == 0);
+  REQUIRE(odd_tris[1] == 1);
+  odd.push_back(0.5 * (odd[0] + odd[1]));
+  const auto mid = static_cast<std::uint32_t>(odd.size() - 1);
+  const std::uint32_t c = odd_tris[2];
+  odd_tris[1] = mid;
+  odd_tris.insert(odd_tris.end(), {mid, 1u, c});
+  remesh(odd, odd_tris, 250, 1.5, &m, &r);
+  CHECK_FALSE(r.input_quads);
+}
+
+TEST_CASE("quad remesh: edge loops go into the input's own quads where their strips are long") {
+  // A tube of 24 x 2 quads, 6 long and of radius 1: each axial edge is 3 long, about four
+  // times the remesh's control edge at this target, the edges around 0.26. Loops go across the
+  // two long strips only: every new vertex lies on an axial edge, so on the unit circle, the
+  // rings are equally spaced, and every interior vertex keeps valence 4.
+  const PolygonMesh tube = Cylinder(24, 2, 1.0, 6.0, false);
+  QuadRemeshOptions options;
+  options.target_vertices = 60;
+  options.input_quads_max_ratio = 100.0;  // accept whatever count the loops give
+  PolygonMesh out;
+  QuadRemeshReport r;
+  REQUIRE(QuadRemesh(tube.positions, Triangles(tube), "tube", options, &out, &r).ok());
+  REQUIRE(r.input_quads);
+  CheckRemesh(tube, out, r, 1, 2);
+  CHECK(r.valence4_share == 1.0);
+  std::map<double, int> rings;
+  for (const Vec3& p : out.positions) {
+    CHECK(std::abs(p.x * p.x + p.y * p.y - 1.0) < 1e-12);
+    ++rings[p.z];
+  }
+  const int levels = static_cast<int>(rings.size());
+  INFO(levels << " rings");
+  CHECK(levels >= 5);      // each long strip split at least in two
+  CHECK(levels % 2 == 1);  // both strips the same way (one class each, equal lengths)
+  CHECK(out.num_vertices() == 24 * levels);
+  CHECK(out.num_faces() == 24 * (levels - 1));
+  int k = 0;
+  for (const auto& [z, count] : rings) {
+    CHECK(count == 24);
+    CHECK(z == Approx(6.0 * k / (levels - 1)).margin(1e-12));
+    ++k;
+  }
+  // Without loops (factor 0): the tube's own 48 quads.
+  options.input_quads_edge_factor = 0.0;
+  options.target_vertices = 60;
+  REQUIRE(QuadRemesh(tube.positions, Triangles(tube), "tube", options, &out, &r).ok());
+  REQUIRE(r.input_quads);
+  CHECK(out.num_vertices() == 72);
+}
+
 TEST_CASE("quad remesh: a regular quad grid stays regular") {
   // A regular quad grid given at its own count is kept as it is.
   PolygonMesh grid;

@@ -12,6 +12,7 @@
 #include <climits>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "dermis/core/mesh_topology.h"
 #include "dermis/offline/build/crease_chains.h"
@@ -110,6 +111,180 @@ std::vector<std::array<std::uint32_t, 2>> KeepEdges(const RemeshTriangles& mesh)
   for (const auto& e : mesh.crease_edges) keep.push_back({e[0], e[1]});
   std::sort(keep.begin(), keep.end());
   return keep;
+}
+
+// Edge loops inserted into an all-quad mesh where it is much coarser than the remesh would be:
+// the quads' opposite edges fall into classes (the rungs of a quad strip, closed under "the
+// opposite edge of a quad"); a class whose longest edge is more than `factor` times the remesh's
+// control edge there (half the sizing field's triangle edge) splits every one of its edges into
+// k equal parts, k the smallest count that brings it within, and each quad into the grid its two
+// classes give. New points on the edges stay on them (the input's edges lie on its surface);
+// those inside a quad are its bilinear points projected onto the surface. The new vertices have
+// valence 4; the strips keep the modeller's edge flow. *crease_edges counts the control edges
+// on the crease chains. False on a mesh that is not all quads (none is changed).
+bool InsertEdgeLoops(const ReferenceSurface& ref, const SizingField& sizing,
+                     const CreaseChains& creases, double factor, PolygonMesh* mesh,
+                     int* crease_edges) {
+  MeshTopology topo;
+  if (!MeshTopology::Build(mesh->num_vertices(), mesh->face_offsets, mesh->face_vertices, &topo)
+           .ok() ||
+      !topo.is_all_quads()) {
+    return false;
+  }
+  const Index ne = topo.num_edges(), nf = topo.num_faces(), nv = topo.num_vertices();
+  const std::vector<Vec3>& x = mesh->positions;
+  // Rung classes by union-find over each quad's two pairs of opposite edges.
+  std::vector<Index> parent(static_cast<std::size_t>(ne));
+  std::iota(parent.begin(), parent.end(), Index{0});
+  auto find = [&](Index e) {
+    while (parent[static_cast<std::size_t>(e)] != e) {
+      parent[static_cast<std::size_t>(e)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(e)])];
+      e = parent[static_cast<std::size_t>(e)];
+    }
+    return e;
+  };
+  auto unite = [&](Index a, Index b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  };
+  for (Index f = 0; f < nf; ++f) {
+    const Index h = topo.face_offset(f);
+    unite(topo.halfedge_edge(h), topo.halfedge_edge(h + 2));
+    unite(topo.halfedge_edge(h + 1), topo.halfedge_edge(h + 3));
+  }
+  // Parts per class: the largest over its edges of ceil(length / (factor x local control edge)).
+  std::vector<int> parts(static_cast<std::size_t>(ne), 1);
+  for (Index e = 0; e < ne; ++e) {
+    const Index h = topo.edge_halfedge(e);
+    const Vec3 &a = x[static_cast<std::size_t>(topo.halfedge_origin(h))],
+               &b = x[static_cast<std::size_t>(topo.halfedge_dest(h))];
+    const Vec3 mid = 0.5 * (a + b);
+    const double cap = factor * 0.5 * sizing.At(mid, Vec3(0.0));
+    if (!(cap > 0.0)) continue;
+    const double k = std::ceil(glm::length(b - a) / cap - 1e-9);
+    int& p = parts[static_cast<std::size_t>(find(e))];
+    if (k > p) p = static_cast<int>(std::min(k, 64.0));
+  }
+  // New vertices: (k - 1) per edge, from its canonical half-edge's origin; then per face.
+  std::vector<Index> edge_base(static_cast<std::size_t>(ne), kInvalidIndex);
+  std::vector<Vec3> pos = x;
+  *crease_edges = 0;
+  for (Index e = 0; e < ne; ++e) {
+    const int k = parts[static_cast<std::size_t>(find(e))];
+    const Index h = topo.edge_halfedge(e);
+    const Index a = topo.halfedge_origin(h), b = topo.halfedge_dest(h);
+    if (!creases.empty() && std::binary_search(creases.edges().begin(), creases.edges().end(),
+                                               std::array<std::uint32_t, 2>{
+                                                   static_cast<std::uint32_t>(std::min(a, b)),
+                                                   static_cast<std::uint32_t>(std::max(a, b))})) {
+      *crease_edges += k;
+    }
+    if (k == 1) continue;
+    edge_base[static_cast<std::size_t>(e)] = static_cast<Index>(pos.size());
+    for (int i = 1; i < k; ++i) {
+      const double t = static_cast<double>(i) / k;
+      pos.push_back((1.0 - t) * x[static_cast<std::size_t>(a)] +
+                    t * x[static_cast<std::size_t>(b)]);
+    }
+  }
+  // Point i of k along half-edge h (0: its origin, k: its destination).
+  auto on_edge = [&](Index h, int i, int k) -> Index {
+    if (i == 0) return topo.halfedge_origin(h);
+    if (i == k) return topo.halfedge_dest(h);
+    const Index e = topo.halfedge_edge(h);
+    const Index base = edge_base[static_cast<std::size_t>(e)];
+    return topo.edge_halfedge(e) == h ? base + i - 1 : base + (k - i) - 1;
+  };
+  PolygonMesh out;
+  out.source_name = mesh->source_name;
+  for (Index f = 0; f < nf; ++f) {
+    const Index h0 = topo.face_offset(f);
+    const int ku = parts[static_cast<std::size_t>(find(topo.halfedge_edge(h0)))];
+    const int kv = parts[static_cast<std::size_t>(find(topo.halfedge_edge(h0 + 1)))];
+    const Vec3 &c0 = pos[static_cast<std::size_t>(topo.face_vertex(f, 0))],
+               &c1 = pos[static_cast<std::size_t>(topo.face_vertex(f, 1))],
+               &c2 = pos[static_cast<std::size_t>(topo.face_vertex(f, 2))],
+               &c3 = pos[static_cast<std::size_t>(topo.face_vertex(f, 3))];
+    const Vec3 normal = glm::cross(c2 - c0, c3 - c1);
+    // Grid (i along c0 -> c1, j along c0 -> c3).
+    std::vector<Index> grid(static_cast<std::size_t>((ku + 1) * (kv + 1)));
+    auto at = [&](int i, int j) -> Index& {
+      return grid[static_cast<std::size_t>(j * (ku + 1) + i)];
+    };
+    for (int i = 0; i <= ku; ++i) {
+      at(i, 0) = on_edge(h0, i, ku);
+      at(ku - i, kv) = on_edge(h0 + 2, i, ku);
+    }
+    for (int j = 0; j <= kv; ++j) {
+      at(ku, j) = on_edge(h0 + 1, j, kv);
+      at(0, kv - j) = on_edge(h0 + 3, j, kv);
+    }
+    for (int j = 1; j < kv; ++j) {
+      for (int i = 1; i < ku; ++i) {
+        const double u = static_cast<double>(i) / ku, v = static_cast<double>(j) / kv;
+        const Vec3 p = (1 - u) * (1 - v) * c0 + u * (1 - v) * c1 + u * v * c2 + (1 - u) * v * c3;
+        at(i, j) = static_cast<Index>(pos.size());
+        pos.push_back(ref.Project(p, normal, sizing.At(p, normal)).point);
+      }
+    }
+    for (int j = 0; j < kv; ++j) {
+      for (int i = 0; i < ku; ++i)
+        out.AddFace({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+  (void)nv;
+  out.positions = std::move(pos);
+  *mesh = std::move(out);
+  return true;
+}
+
+// Step 6 of QuadRemesh(): the input's triangles paired back into quads (its crease edges never a
+// diagonal), compacted to the vertices they use. True, with *own and *report (the remesh's
+// report with the quad measures replaced), where every triangle pairs, the result is a valid
+// mesh with the input's components and loops, at least as regular as `remesh` (share of
+// valence-4 interior vertices) and has between 1 and input_quads_max_ratio times its vertices.
+bool InputQuads(const std::vector<Vec3>& positions, const std::vector<std::uint32_t>& triangles,
+                const ReferenceSurface& ref, const SizingField& sizing, const CreaseChains& creases,
+                const QuadRemeshOptions& options, const PolygonMesh& remesh, PolygonMesh* own,
+                QuadRemeshReport* report) {
+  QuadPairingStats stats;
+  const std::vector<std::array<std::uint32_t, 2>>& keep = creases.edges();
+  if (!PairTrianglesIntoQuads(positions, triangles, options.pairing, own, &stats,
+                              keep.empty() ? nullptr : &keep)
+           .ok() ||
+      stats.triangles != 0) {
+    return false;
+  }
+  CompactUnusedVertices(own);
+  int crease_control_edges = 0;
+  if (!InsertEdgeLoops(ref, sizing, creases, options.input_quads_edge_factor, own,
+                       &crease_control_edges)) {
+    return false;
+  }
+  const double n_own = static_cast<double>(own->positions.size());
+  const double n_remesh = static_cast<double>(remesh.positions.size());
+  if (n_own < n_remesh || n_own > options.input_quads_max_ratio * n_remesh) return false;
+  if (!ValidatePolygonMesh(*own).ok()) return false;
+  QuadRemeshReport r = *report;
+  MeasureQuadMesh(*own, &r);
+  if (r.components != report->components || r.boundary_loops != report->boundary_loops ||
+      r.valence4_share < report->valence4_share || r.max_valence > report->max_valence) {
+    return false;
+  }
+  r.input_quads = true;
+  r.remesh_vertices = report->vertices;
+  r.seed_vertices = 0;
+  r.triangle_vertices = static_cast<int>(own->positions.size());
+  r.quads_paired = stats.quads;
+  r.triangles_unpaired = 0;
+  r.relax_rejected = 0;
+  // Every crease edge of the input is an edge of its own quads.
+  r.crease_edges_kept = r.crease_edges;
+  r.control_crease_edges = crease_control_edges;
+  own->source_name = remesh.source_name;
+  *report = r;
+  return true;
 }
 
 // Two-sided distance between the input and a triangle mesh on it, relative to the local
@@ -459,6 +634,15 @@ Status QuadRemesh(const std::vector<Vec3>& positions, const std::vector<std::uin
                               " components and " + std::to_string(rep.boundary_loops) +
                               " boundary loops where the input has " + std::to_string(components) +
                               " and " + std::to_string(loops));
+    }
+    // 6. The input's own quads, where they are at least as good a control mesh.
+    if (options.input_quads_max_ratio >= 1.0) {
+      PolygonMesh own;
+      QuadRemeshReport own_rep = rep;
+      if (InputQuads(positions, triangles, ref, sizing, creases, options, result, &own, &own_rep)) {
+        result = std::move(own);
+        rep = own_rep;
+      }
     }
     *out = std::move(result);
   }

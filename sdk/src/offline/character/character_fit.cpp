@@ -307,6 +307,7 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     test.smooth_edges = smooth_edges;
     part_creases = TestCreases(dense, test);
   }
+  fo.remesh.input_quads_max_ratio = options.input_quads;
   if (options.remesh_creases) {
     fo.remesh.crease_angle_deg = crease_angle_deg;
     fo.remesh.smooth_edges = smooth_edges;
@@ -586,6 +587,11 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
   if (!(options.crease_support > 0.0 && options.crease_support <= 1.0)) {
     return Status::InvalidInput("character fit: crease_support must be in (0, 1], not " +
                                 std::to_string(options.crease_support));
+  }
+  if (!(options.input_quads == 0.0 ||
+        (options.input_quads >= 1.0 && std::isfinite(options.input_quads)))) {
+    return Status::InvalidInput("character fit: input_quads must be 0 (off) or at least 1, not " +
+                                std::to_string(options.input_quads));
   }
   const auto t0 = std::chrono::steady_clock::now();
   Character ch;

@@ -231,7 +231,10 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   // A built control mesh lies on the data; moving its vertices so that the smooth domain
   // surface follows the data leaves far smaller displacements at sharp and thin features. A
   // given control mesh is used as is.
+  // The input's own quads (QuadRemeshOptions::input_quads_max_ratio) are the data's vertices,
+  // which the domain surface interpolates: they stay.
   if (!input.control && options.control_fit_iterations > 0 &&
+      !rep.control_mesh.quality.input_quads &&
       static_cast<double>(fit_points.size()) >=
           options.control_fit_min_points_per_vertex * domain.num_vertices()) {
     progress("control-vertex fit", w_control_mesh);

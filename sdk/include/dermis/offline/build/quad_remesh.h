@@ -58,6 +58,20 @@ struct QuadRemeshOptions {
   /// round there; its facets' kinks are how few triangles approximate it (docs/characters.md,
   /// "Smooth-shaded parts follow their shading").
   std::vector<std::array<std::uint32_t, 2>> smooth_edges;
+  /// The input's own quads (docs/fitting.md, "The input's own quads"): a mesh modelled in
+  /// quads and exported as triangles pairs back into them. The paired input (crease edges never
+  /// a diagonal) replaces the remesh where every triangle pairs, its share of valence-4
+  /// interior vertices is at least the remesh's, and its vertex count is at least the
+  /// remesh's and at most this many times it: the modeller's edge loops, every vertex on the
+  /// input, no more vertices than the input has. Below 1 (the default: a surface's fit asks
+  /// for a count): never; characters set it (CharacterFitOptions::input_quads).
+  double input_quads_max_ratio = 0.0;
+  /// Edge loops are inserted into the input's own quads across every quad strip whose edges are
+  /// more than this many times the remesh's local control edge (half the sizing field's
+  /// triangle edge there), so that a long limb span gets rings (a forearm twisted by the sweep
+  /// keeps its section: CesiumMan's wrist twisted through 360 degrees, smallest radius 0.899
+  /// without loops, 0.975 with; docs/characters.md, "The input's own quads"). <= 0: none.
+  double input_quads_edge_factor = 3.0;
 };
 
 /// Quality of a quad remesh (written to the fit report).
@@ -82,6 +96,10 @@ struct QuadRemeshReport {
   /// (in local target edge lengths) there.
   int grown_target = 0;
   double deviation = 0.0;
+  /// The result is the input's own quads (QuadRemeshOptions::input_quads_max_ratio); the
+  /// remesh it replaced had remesh_vertices vertices (0 when it was kept).
+  bool input_quads = false;
+  int remesh_vertices = 0;
   /// Creases of the input (crease_angle_deg > 0): its crease edges and chains (closed ones
   /// among them), the input's crease edges that the control mesh keeps (each one's midpoint
   /// within a quarter of the local target edge length of a control crease edge), and the
@@ -102,7 +120,9 @@ struct QuadRemeshReport {
 ///     corrected from the count actually reached, then a few single splits or collapses;
 ///  4. triangles paired into quads by maximum weight matching (quad_pairing.h);
 ///  5. one Catmull-Clark style split (quads into 4, unpaired triangles into 3), new points
-///     projected onto the surface, then relaxation (quad_relax.h).
+///     projected onto the surface, then relaxation (quad_relax.h);
+///  6. the input's own quads instead, where they pair back and are as regular and about as
+///     dense (QuadRemeshOptions::input_quads_max_ratio).
 /// The result passes ValidatePolygonMesh() and keeps the input's components and boundary loops.
 /// Fails with a message naming `name` for non-manifold or unusable input, or when the result
 /// would not keep them. Deterministic.

@@ -138,6 +138,14 @@ struct CharacterFitOptions {
   /// 0.41 %). Open chains get none: rows beside them rippled RiggedFigure's and the Fox's flat
   /// sides. In (0, 1]; 1: off; anything else is refused by FitCharacter.
   double crease_support = 0.5;
+  /// A part modelled in quads and exported as triangles gets its own quads back as its control
+  /// mesh (QuadRemeshOptions::input_quads_max_ratio): where every triangle pairs, the quads
+  /// are as regular as the remesh and have between 1 and this many times its vertices. The
+  /// domain surface then interpolates the source's own vertices and follows its edge loops, and
+  /// the control-vertex fit does not move them (docs/characters.md, "The input's own quads";
+  /// CesiumMan: curvature ratio 1.76 -> 1.24, E1 max 1.5e-3 -> 4e-5). 0: off; otherwise >= 1,
+  /// anything else is refused by FitCharacter.
+  double input_quads = 1.5;
   /// With remesh_creases, also fit each component whose control mesh kept creases on the
   /// remesh without them, and keep the crease-aware fit only where its two-sided Hausdorff
   /// distance is below crease_margin times the other's: creases sharpen low-poly, hard-edged
