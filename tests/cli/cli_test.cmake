@@ -152,6 +152,10 @@ expect_run(2 "--refit applies to a character.*dense_torus\\.obj is a surface" ${
 if(EXISTS ${WORK}/bad_refit.dsurf)
   message(FATAL_ERROR "a refused fit wrote bad_refit.dsurf")
 endif()
+expect_run(2 "--input-quads applies to a character" ${DERMIS} fit ${WORK}/dense_torus.obj
+           -o ${WORK}/bad_refit.dsurf --input-quads 1.5)
+expect_run(2 "--input-quads: must be 0 or in \\[1, 1e6\\]" ${DERMIS} fit ${WORK}/dense_torus.obj
+           -o ${WORK}/bad_refit.dsurf --input-quads 0.5)
 # --refit=false asks for nothing a surface lacks (the input is missing: exit 1, not 2).
 expect_run(1 "missing\\.obj" ${DERMIS} fit ${WORK}/missing.obj -o ${WORK}/bad_refit.dsurf
            --refit=false)

@@ -640,8 +640,9 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
       ->capture_default_str();
   cmd->add_option("--input-quads", args->input_quads,
                   "Characters: a part modelled in quads gets its own quads back as its control "
-                  "mesh where every triangle pairs and they number 1 to this many times the "
-                  "remesh's vertices (0: off; docs/characters.md, \"The input's own quads\")")
+                  "mesh (edge loops added where they are long) where they are as regular as the "
+                  "remesh and number 1 to this many times its vertices (0: off; "
+                  "docs/characters.md, \"The input's own quads\")")
       ->check(CLI::Validator(
           [](std::string& value) {
             double r = -1.0;

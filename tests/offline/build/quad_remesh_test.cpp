@@ -400,7 +400,9 @@ TEST_CASE("quad remesh: a mesh modelled in quads gets its own quads back") {
   CHECK_FALSE(r.input_quads);
   remesh(cyl.positions, tris, 400, 1.5, &m, &r);
   CHECK_FALSE(r.input_quads);
-  // A triangle that cannot pair (a boundary edge split in two makes the count odd): the remesh.
+  // A triangle that cannot pair (a boundary edge split in two makes the count odd): the
+  // leftover triangle becomes three quads round its centre (the only interior vertex of
+  // valence 3), the strips through its edges are split in two, and every input vertex stays.
   std::vector<Vec3> odd = cyl.positions;
   std::vector<std::uint32_t> odd_tris = tris;
   // The first triangle (0, 1, 25) has the bottom rim's edge (0, 1): split it at its midpoint.
@@ -412,7 +414,20 @@ TEST_CASE("quad remesh: a mesh modelled in quads gets its own quads back") {
   odd_tris[1] = mid;
   odd_tris.insert(odd_tris.end(), {mid, 1u, c});
   remesh(odd, odd_tris, 250, 1.5, &m, &r);
-  CHECK_FALSE(r.input_quads);
+  REQUIRE(r.input_quads);
+  CHECK(r.triangles_unpaired == 1);
+  CheckRemesh(cyl, m, r, 1, 2);
+  CHECK(m.num_vertices() > 313);
+  for (std::size_t v = 0; v < odd.size(); ++v) {
+    CHECK(m.positions[v] == odd[v]);  // the input's vertices first, in order
+  }
+  MeshTopology topo;
+  REQUIRE(MeshTopology::Build(m.num_vertices(), m.face_offsets, m.face_vertices, &topo).ok());
+  int valence3 = 0;
+  for (Index v = 0; v < topo.num_vertices(); ++v) {
+    if (!topo.is_boundary_vertex(v) && topo.valence(v) == 3) ++valence3;
+  }
+  CHECK(valence3 == 1);
 }
 
 TEST_CASE("quad remesh: edge loops go into the input's own quads where their strips are long") {

@@ -113,27 +113,31 @@ std::vector<std::array<std::uint32_t, 2>> KeepEdges(const RemeshTriangles& mesh)
   return keep;
 }
 
-// Edge loops inserted into an all-quad mesh where it is much coarser than the remesh would be:
-// the quads' opposite edges fall into classes (the rungs of a quad strip, closed under "the
-// opposite edge of a quad"); a class whose longest edge is more than `factor` times the remesh's
-// control edge there (half the sizing field's triangle edge) splits every one of its edges into
-// k equal parts, k the smallest count that brings it within, and each quad into the grid its two
-// classes give. New points on the edges stay on them (the input's edges lie on its surface);
-// those inside a quad are its bilinear points projected onto the surface. The new vertices have
-// valence 4; the strips keep the modeller's edge flow. *crease_edges counts the control edges
-// on the crease chains. False on a mesh that is not all quads (none is changed).
+// Edge loops inserted into a quad-dominant mesh (quads and triangles) where it is much coarser
+// than the remesh would be, and its triangles made quads: the edges fall into classes (the
+// rungs of a quad strip: a quad's opposite edges; a triangle's three edges), and a class whose
+// longest edge is more than `factor` times the remesh's control edge there (half the sizing
+// field's triangle edge; factor <= 0: never) splits every one of its edges into k equal parts,
+// k the smallest count that brings it within; a class with a triangle's edges splits into an
+// even k >= 2. Each quad becomes the grid its two classes give; each triangle three quads
+// (corner, edge midpoint, centre, edge midpoint), each a grid of k/2 x k/2. New points on the
+// edges stay on them (the input's edges lie on its surface); the others are Coons points of
+// their patch's sides projected onto the surface. New vertices inside quads have valence 4,
+// triangle centres 3. *crease_edges counts the control edges on the crease chains. False on a
+// face that is neither a quad nor a triangle, or a mesh the topology refuses.
 bool InsertEdgeLoops(const ReferenceSurface& ref, const SizingField& sizing,
                      const CreaseChains& creases, double factor, PolygonMesh* mesh,
                      int* crease_edges) {
   MeshTopology topo;
   if (!MeshTopology::Build(mesh->num_vertices(), mesh->face_offsets, mesh->face_vertices, &topo)
-           .ok() ||
-      !topo.is_all_quads()) {
+           .ok()) {
     return false;
   }
-  const Index ne = topo.num_edges(), nf = topo.num_faces(), nv = topo.num_vertices();
+  const Index ne = topo.num_edges(), nf = topo.num_faces();
+  for (Index f = 0; f < nf; ++f) {
+    if (topo.face_size(f) != 3 && topo.face_size(f) != 4) return false;
+  }
   const std::vector<Vec3>& x = mesh->positions;
-  // Rung classes by union-find over each quad's two pairs of opposite edges.
   std::vector<Index> parent(static_cast<std::size_t>(ne));
   std::iota(parent.begin(), parent.end(), Index{0});
   auto find = [&](Index e) {
@@ -148,30 +152,46 @@ bool InsertEdgeLoops(const ReferenceSurface& ref, const SizingField& sizing,
     a = find(a), b = find(b);
     if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
   };
+  std::vector<char> on_triangle(static_cast<std::size_t>(ne), 0);
   for (Index f = 0; f < nf; ++f) {
     const Index h = topo.face_offset(f);
-    unite(topo.halfedge_edge(h), topo.halfedge_edge(h + 2));
-    unite(topo.halfedge_edge(h + 1), topo.halfedge_edge(h + 3));
+    if (topo.face_size(f) == 4) {
+      unite(topo.halfedge_edge(h), topo.halfedge_edge(h + 2));
+      unite(topo.halfedge_edge(h + 1), topo.halfedge_edge(h + 3));
+    } else {
+      unite(topo.halfedge_edge(h), topo.halfedge_edge(h + 1));
+      unite(topo.halfedge_edge(h), topo.halfedge_edge(h + 2));
+      on_triangle[static_cast<std::size_t>(topo.halfedge_edge(h))] = 1;
+    }
   }
-  // Parts per class: the largest over its edges of ceil(length / (factor x local control edge)).
+  // Parts per class: the largest over its edges of ceil(length / (factor x local control
+  // edge)); even and at least 2 where the class has a triangle's edges.
   std::vector<int> parts(static_cast<std::size_t>(ne), 1);
+  std::vector<char> even(static_cast<std::size_t>(ne), 0);
   for (Index e = 0; e < ne; ++e) {
+    if (on_triangle[static_cast<std::size_t>(e)]) even[static_cast<std::size_t>(find(e))] = 1;
+    if (!(factor > 0.0)) continue;
     const Index h = topo.edge_halfedge(e);
     const Vec3 &a = x[static_cast<std::size_t>(topo.halfedge_origin(h))],
                &b = x[static_cast<std::size_t>(topo.halfedge_dest(h))];
-    const Vec3 mid = 0.5 * (a + b);
-    const double cap = factor * 0.5 * sizing.At(mid, Vec3(0.0));
+    const double cap = factor * 0.5 * sizing.At(0.5 * (a + b), Vec3(0.0));
     if (!(cap > 0.0)) continue;
     const double k = std::ceil(glm::length(b - a) / cap - 1e-9);
     int& p = parts[static_cast<std::size_t>(find(e))];
     if (k > p) p = static_cast<int>(std::min(k, 64.0));
   }
-  // New vertices: (k - 1) per edge, from its canonical half-edge's origin; then per face.
+  for (Index e = 0; e < ne; ++e) {
+    if (find(e) != e || !even[static_cast<std::size_t>(e)]) continue;
+    int& p = parts[static_cast<std::size_t>(e)];
+    p = std::max(2, p + (p % 2));
+  }
+  auto k_of = [&](Index e) { return parts[static_cast<std::size_t>(find(e))]; };
+  // New vertices: (k - 1) per edge, from its canonical half-edge's origin.
   std::vector<Index> edge_base(static_cast<std::size_t>(ne), kInvalidIndex);
   std::vector<Vec3> pos = x;
   *crease_edges = 0;
   for (Index e = 0; e < ne; ++e) {
-    const int k = parts[static_cast<std::size_t>(find(e))];
+    const int k = k_of(e);
     const Index h = topo.edge_halfedge(e);
     const Index a = topo.halfedge_origin(h), b = topo.halfedge_dest(h);
     if (!creases.empty() && std::binary_search(creases.edges().begin(), creases.edges().end(),
@@ -188,62 +208,125 @@ bool InsertEdgeLoops(const ReferenceSurface& ref, const SizingField& sizing,
                     t * x[static_cast<std::size_t>(b)]);
     }
   }
-  // Point i of k along half-edge h (0: its origin, k: its destination).
-  auto on_edge = [&](Index h, int i, int k) -> Index {
-    if (i == 0) return topo.halfedge_origin(h);
-    if (i == k) return topo.halfedge_dest(h);
+  // The k + 1 points along half-edge h, from its origin to its destination.
+  auto side = [&](Index h) {
+    const int k = k_of(topo.halfedge_edge(h));
+    std::vector<Index> out(static_cast<std::size_t>(k) + 1);
     const Index e = topo.halfedge_edge(h);
     const Index base = edge_base[static_cast<std::size_t>(e)];
-    return topo.edge_halfedge(e) == h ? base + i - 1 : base + (k - i) - 1;
+    const bool forward = topo.edge_halfedge(e) == h;
+    out.front() = topo.halfedge_origin(h);
+    out.back() = topo.halfedge_dest(h);
+    for (int i = 1; i < k; ++i)
+      out[static_cast<std::size_t>(i)] = forward ? base + i - 1 : base + (k - i) - 1;
+    return out;
+  };
+  auto project = [&](const Vec3& p, const Vec3& normal) {
+    return ref.Project(p, normal, sizing.At(p, normal)).point;
   };
   PolygonMesh out;
   out.source_name = mesh->source_name;
-  for (Index f = 0; f < nf; ++f) {
-    const Index h0 = topo.face_offset(f);
-    const int ku = parts[static_cast<std::size_t>(find(topo.halfedge_edge(h0)))];
-    const int kv = parts[static_cast<std::size_t>(find(topo.halfedge_edge(h0 + 1)))];
-    const Vec3 &c0 = pos[static_cast<std::size_t>(topo.face_vertex(f, 0))],
-               &c1 = pos[static_cast<std::size_t>(topo.face_vertex(f, 1))],
-               &c2 = pos[static_cast<std::size_t>(topo.face_vertex(f, 2))],
-               &c3 = pos[static_cast<std::size_t>(topo.face_vertex(f, 3))];
-    const Vec3 normal = glm::cross(c2 - c0, c3 - c1);
-    // Grid (i along c0 -> c1, j along c0 -> c3).
-    std::vector<Index> grid(static_cast<std::size_t>((ku + 1) * (kv + 1)));
+  // A grid patch from its four sides, counter-clockwise from its first corner: bottom
+  // (nu + 1 points, left to right), right (nv + 1, bottom to top), top (nu + 1, right to left),
+  // left (nv + 1, top to bottom). Interior points: Coons, projected onto the surface.
+  auto patch = [&](const std::vector<Index>& bottom, const std::vector<Index>& right,
+                   const std::vector<Index>& top, const std::vector<Index>& left) {
+    const int nu = static_cast<int>(bottom.size()) - 1, nv = static_cast<int>(right.size()) - 1;
+    std::vector<Index> grid(static_cast<std::size_t>((nu + 1) * (nv + 1)));
     auto at = [&](int i, int j) -> Index& {
-      return grid[static_cast<std::size_t>(j * (ku + 1) + i)];
+      return grid[static_cast<std::size_t>(j * (nu + 1) + i)];
     };
-    for (int i = 0; i <= ku; ++i) {
-      at(i, 0) = on_edge(h0, i, ku);
-      at(ku - i, kv) = on_edge(h0 + 2, i, ku);
+    for (int i = 0; i <= nu; ++i) {
+      at(i, 0) = bottom[static_cast<std::size_t>(i)];
+      at(nu - i, nv) = top[static_cast<std::size_t>(i)];
     }
-    for (int j = 0; j <= kv; ++j) {
-      at(ku, j) = on_edge(h0 + 1, j, kv);
-      at(0, kv - j) = on_edge(h0 + 3, j, kv);
+    for (int j = 0; j <= nv; ++j) {
+      at(nu, j) = right[static_cast<std::size_t>(j)];
+      at(0, nv - j) = left[static_cast<std::size_t>(j)];
     }
-    for (int j = 1; j < kv; ++j) {
-      for (int i = 1; i < ku; ++i) {
-        const double u = static_cast<double>(i) / ku, v = static_cast<double>(j) / kv;
-        const Vec3 p = (1 - u) * (1 - v) * c0 + u * (1 - v) * c1 + u * v * c2 + (1 - u) * v * c3;
+    const Vec3 c00 = pos[static_cast<std::size_t>(at(0, 0))],
+               c10 = pos[static_cast<std::size_t>(at(nu, 0))],
+               c11 = pos[static_cast<std::size_t>(at(nu, nv))],
+               c01 = pos[static_cast<std::size_t>(at(0, nv))];
+    const Vec3 normal = glm::cross(c11 - c00, c01 - c10);
+    for (int j = 1; j < nv; ++j) {
+      for (int i = 1; i < nu; ++i) {
+        const double u = static_cast<double>(i) / nu, v = static_cast<double>(j) / nv;
+        const Vec3 b = pos[static_cast<std::size_t>(at(i, 0))],
+                   t = pos[static_cast<std::size_t>(at(i, nv))],
+                   l = pos[static_cast<std::size_t>(at(0, j))],
+                   r = pos[static_cast<std::size_t>(at(nu, j))];
+        const Vec3 p =
+            (1 - v) * b + v * t + (1 - u) * l + u * r -
+            ((1 - u) * (1 - v) * c00 + u * (1 - v) * c10 + u * v * c11 + (1 - u) * v * c01);
         at(i, j) = static_cast<Index>(pos.size());
-        pos.push_back(ref.Project(p, normal, sizing.At(p, normal)).point);
+        pos.push_back(project(p, normal));
       }
     }
-    for (int j = 0; j < kv; ++j) {
-      for (int i = 0; i < ku; ++i)
+    for (int j = 0; j < nv; ++j) {
+      for (int i = 0; i < nu; ++i) {
         out.AddFace({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
+    }
+  };
+  auto reversed = [](std::vector<Index> v) {
+    std::reverse(v.begin(), v.end());
+    return v;
+  };
+  for (Index f = 0; f < nf; ++f) {
+    const Index h0 = topo.face_offset(f);
+    if (topo.face_size(f) == 4) {
+      patch(side(h0), side(h0 + 1), side(h0 + 2), side(h0 + 3));
+      continue;
+    }
+    // A triangle: its centre and a spoke from each edge's midpoint to it (m = k / 2 segments).
+    const int m = k_of(topo.halfedge_edge(h0)) / 2;
+    std::array<std::vector<Index>, 3> sides, spokes;
+    Vec3 centre(0.0);
+    for (int c = 0; c < 3; ++c) {
+      sides[static_cast<std::size_t>(c)] = side(h0 + c);
+      centre += pos[static_cast<std::size_t>(topo.halfedge_origin(h0 + c))] / 3.0;
+    }
+    const Vec3 &a = pos[static_cast<std::size_t>(topo.halfedge_origin(h0))],
+               &b = pos[static_cast<std::size_t>(topo.halfedge_origin(h0 + 1))],
+               &c = pos[static_cast<std::size_t>(topo.halfedge_origin(h0 + 2))];
+    const Vec3 normal = glm::cross(b - a, c - a);
+    const Index g = static_cast<Index>(pos.size());
+    pos.push_back(project(centre, normal));
+    for (int e = 0; e < 3; ++e) {
+      std::vector<Index>& sp = spokes[static_cast<std::size_t>(e)];
+      const Index mid = sides[static_cast<std::size_t>(e)][static_cast<std::size_t>(m)];
+      sp.push_back(mid);
+      for (int i = 1; i < m; ++i) {
+        const double t = static_cast<double>(i) / m;
+        sp.push_back(static_cast<Index>(pos.size()));
+        pos.push_back(project(
+            (1 - t) * pos[static_cast<std::size_t>(mid)] + t * pos[static_cast<std::size_t>(g)],
+            normal));
+      }
+      sp.push_back(g);
+    }
+    // Corner c: (corner, midpoint of side c, centre, midpoint of side c - 1).
+    for (int cc = 0; cc < 3; ++cc) {
+      const std::vector<Index>& s_in = sides[static_cast<std::size_t>(cc)];
+      const std::vector<Index>& s_prev = sides[static_cast<std::size_t>((cc + 2) % 3)];
+      std::vector<Index> bottom(s_in.begin(), s_in.begin() + m + 1);
+      std::vector<Index> left(s_prev.begin() + m, s_prev.end());
+      patch(bottom, spokes[static_cast<std::size_t>(cc)],
+            reversed(spokes[static_cast<std::size_t>((cc + 2) % 3)]), left);
     }
   }
-  (void)nv;
   out.positions = std::move(pos);
   *mesh = std::move(out);
   return true;
 }
 
 // Step 6 of QuadRemesh(): the input's triangles paired back into quads (its crease edges never a
-// diagonal), compacted to the vertices they use. True, with *own and *report (the remesh's
-// report with the quad measures replaced), where every triangle pairs, the result is a valid
-// mesh with the input's components and loops, at least as regular as `remesh` (share of
-// valence-4 interior vertices) and has between 1 and input_quads_max_ratio times its vertices.
+// diagonal), compacted to the vertices they use, with edge loops and its leftover triangles made
+// quads (InsertEdgeLoops). True, with *own and *report (the remesh's report with the quad
+// measures replaced), where the result is a valid mesh with the input's components and loops,
+// at least as regular as `remesh` (share of valence-4 interior vertices) with no higher
+// valence, and has between 1 and input_quads_max_ratio times its vertices.
 bool InputQuads(const std::vector<Vec3>& positions, const std::vector<std::uint32_t>& triangles,
                 const ReferenceSurface& ref, const SizingField& sizing, const CreaseChains& creases,
                 const QuadRemeshOptions& options, const PolygonMesh& remesh, PolygonMesh* own,
@@ -252,8 +335,7 @@ bool InputQuads(const std::vector<Vec3>& positions, const std::vector<std::uint3
   const std::vector<std::array<std::uint32_t, 2>>& keep = creases.edges();
   if (!PairTrianglesIntoQuads(positions, triangles, options.pairing, own, &stats,
                               keep.empty() ? nullptr : &keep)
-           .ok() ||
-      stats.triangles != 0) {
+           .ok()) {
     return false;
   }
   CompactUnusedVertices(own);
@@ -277,7 +359,7 @@ bool InputQuads(const std::vector<Vec3>& positions, const std::vector<std::uint3
   r.seed_vertices = 0;
   r.triangle_vertices = static_cast<int>(own->positions.size());
   r.quads_paired = stats.quads;
-  r.triangles_unpaired = 0;
+  r.triangles_unpaired = stats.triangles;
   r.relax_rejected = 0;
   // Every crease edge of the input is an edge of its own quads.
   r.crease_edges_kept = r.crease_edges;

@@ -60,10 +60,11 @@ struct QuadRemeshOptions {
   std::vector<std::array<std::uint32_t, 2>> smooth_edges;
   /// The input's own quads (docs/fitting.md, "The input's own quads"): a mesh modelled in
   /// quads and exported as triangles pairs back into them. The paired input (crease edges never
-  /// a diagonal) replaces the remesh where every triangle pairs, its share of valence-4
-  /// interior vertices is at least the remesh's, and its vertex count is at least the
-  /// remesh's and at most this many times it: the modeller's edge loops, every vertex on the
-  /// input, no more vertices than the input has. Below 1 (the default: a surface's fit asks
+  /// a diagonal; leftover triangles made three quads each, edge loops inserted, see
+  /// input_quads_edge_factor) replaces the remesh where its share of valence-4 interior
+  /// vertices is at least the remesh's, its largest valence at most the remesh's, and its
+  /// vertex count at least the remesh's and at most this many times it: the modeller's edge
+  /// loops, every input vertex a control vertex. Below 1 (the default: a surface's fit asks
   /// for a count): never; characters set it (CharacterFitOptions::input_quads).
   double input_quads_max_ratio = 0.0;
   /// Edge loops are inserted into the input's own quads across every quad strip whose edges are

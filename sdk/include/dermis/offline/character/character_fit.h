@@ -139,8 +139,9 @@ struct CharacterFitOptions {
   /// sides. In (0, 1]; 1: off; anything else is refused by FitCharacter.
   double crease_support = 0.5;
   /// A part modelled in quads and exported as triangles gets its own quads back as its control
-  /// mesh (QuadRemeshOptions::input_quads_max_ratio): where every triangle pairs, the quads
-  /// are as regular as the remesh and have between 1 and this many times its vertices. The
+  /// mesh (QuadRemeshOptions::input_quads_max_ratio): where its triangles pair back into quads
+  /// (with edge loops and any leftover triangle made quads) as regular as the remesh, with
+  /// between 1 and this many times its vertices. The
   /// domain surface then interpolates the source's own vertices and follows its edge loops, and
   /// the control-vertex fit does not move them (docs/characters.md, "The input's own quads";
   /// CesiumMan: curvature ratio 1.76 -> 1.24, E1 max 1.5e-3 -> 4e-5). 0: off; otherwise >= 1,
