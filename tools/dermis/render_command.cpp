@@ -161,10 +161,8 @@ Status SurfaceMesh(const RenderArgs& a, const DisplacedSurface& surface, int dis
 }
 
 // The posed primitives of a character as render meshes (triangles only).
-// With `wireframe`, the lod tessellation's control edges as lines.
 std::vector<render::Mesh> PosedMeshes(const CharacterPoser& poser,
-                                      const std::vector<PosedPrimitive>& posed,
-                                      bool wireframe = false) {
+                                      const std::vector<PosedPrimitive>& posed) {
   std::vector<render::Mesh> meshes;
   for (std::size_t d = 0; d < posed.size(); ++d) {
     const DrawnPrimitive& dp = poser.drawn()[d];
@@ -175,16 +173,27 @@ std::vector<render::Mesh> PosedMeshes(const CharacterPoser& poser,
     m.triangles = PrimitiveTriangles(prim);
     for (const Vec3& p : posed[d].positions) m.positions.push_back(F(p));
     for (const Vec3& n : posed[d].normals) m.normals.push_back(F(n));
-    if (wireframe) {
-      const std::vector<VertexBinding>& loc = poser.surface_locations(d);
-      m.lines = ControlEdgeLines(m.triangles, [&](std::uint32_t i, std::uint32_t j) {
-        return i < loc.size() && j < loc.size() && loc[i].part >= 0 && loc[i].part == loc[j].part &&
-               OnControlEdge(loc[i]) && OnControlEdge(loc[j]);
-      });
-    }
     meshes.push_back(std::move(m));
   }
   return meshes;
+}
+
+// The lod tessellation's control edges as lines, per drawn primitive of `poser` (empty where no
+// part replaces it): topology only, built once for every frame drawn.
+std::vector<std::vector<std::uint32_t>> WireframeLines(const CharacterPoser& poser) {
+  std::vector<std::vector<std::uint32_t>> lines(poser.drawn().size());
+  for (std::size_t d = 0; d < lines.size(); ++d) {
+    const DrawnPrimitive& dp = poser.drawn()[d];
+    const AssetPrimitive& prim = poser.asset()
+                                     .meshes[static_cast<std::size_t>(dp.mesh)]
+                                     .primitives[static_cast<std::size_t>(dp.primitive)];
+    const std::vector<VertexBinding>& loc = poser.surface_locations(d);
+    lines[d] = ControlEdgeLines(PrimitiveTriangles(prim), [&](std::uint32_t i, std::uint32_t j) {
+      return i < loc.size() && j < loc.size() && loc[i].part >= 0 && loc[i].part == loc[j].part &&
+             OnControlEdge(loc[i]) && OnControlEdge(loc[j]);
+    });
+  }
+  return lines;
 }
 
 // The source character as a glTF viewer draws it at the rest pose (world space), as one
@@ -421,6 +430,9 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
     view.scalar_max = ErrorRange(rest_meshes);
     view.legend = "distance to source";
   }
+  // The control edges, once: every poser draws the same lod asset (same mode and level).
+  std::vector<std::vector<std::uint32_t>> wire;
+  if (a.wireframe) wire = WireframeLines(poser);
   std::vector<std::vector<render::Mesh>> frames;
   render::Box box;
   ProgressBar bar(kRenderCommand, a.quiet);
@@ -430,7 +442,8 @@ int RenderCharacter(const RenderArgs& a, const Character& ch, render::View* view
       std::vector<PosedPrimitive> posed;
       s = posers[k].PoseClip(clip, t, a.fps, &posed);
       if (!s.ok()) return Fail(kRenderCommand, s);
-      std::vector<render::Mesh> meshes = PosedMeshes(posers[k], posed, a.wireframe);
+      std::vector<render::Mesh> meshes = PosedMeshes(posers[k], posed);
+      for (std::size_t d = 0; d < meshes.size() && d < wire.size(); ++d) meshes[d].lines = wire[d];
       std::size_t at = 0;
       for (render::Mesh& m : meshes) {
         if (error_map) {

@@ -123,11 +123,12 @@ std::vector<std::array<std::uint32_t, 2>> KeepEdges(const RemeshTriangles& mesh)
 // (corner, edge midpoint, centre, edge midpoint), each a grid of k/2 x k/2. New points on the
 // edges stay on them (the input's edges lie on its surface); the others are Coons points of
 // their patch's sides projected onto the surface. New vertices inside quads have valence 4,
-// triangle centres 3. *crease_edges counts the control edges on the crease chains. False on a
-// face that is neither a quad nor a triangle, or a mesh the topology refuses.
+// triangle centres 3. *crease_edges counts the control edges on `crease_edges_in` (pairs of
+// the mesh's vertex indices, a < b, sorted). False on a face that is neither a quad nor a
+// triangle, or a mesh the topology refuses.
 bool InsertEdgeLoops(const ReferenceSurface& ref, const SizingField& sizing,
-                     const CreaseChains& creases, double factor, PolygonMesh* mesh,
-                     int* crease_edges) {
+                     const std::vector<std::array<std::uint32_t, 2>>& crease_edges_in,
+                     double factor, PolygonMesh* mesh, int* crease_edges) {
   MeshTopology topo;
   if (!MeshTopology::Build(mesh->num_vertices(), mesh->face_offsets, mesh->face_vertices, &topo)
            .ok()) {
@@ -152,7 +153,6 @@ bool InsertEdgeLoops(const ReferenceSurface& ref, const SizingField& sizing,
     a = find(a), b = find(b);
     if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
   };
-  std::vector<char> on_triangle(static_cast<std::size_t>(ne), 0);
   for (Index f = 0; f < nf; ++f) {
     const Index h = topo.face_offset(f);
     if (topo.face_size(f) == 4) {
@@ -161,16 +161,18 @@ bool InsertEdgeLoops(const ReferenceSurface& ref, const SizingField& sizing,
     } else {
       unite(topo.halfedge_edge(h), topo.halfedge_edge(h + 1));
       unite(topo.halfedge_edge(h), topo.halfedge_edge(h + 2));
-      on_triangle[static_cast<std::size_t>(topo.halfedge_edge(h))] = 1;
     }
   }
   // Parts per class: the largest over its edges of ceil(length / (factor x local control
   // edge)); even and at least 2 where the class has a triangle's edges.
   std::vector<int> parts(static_cast<std::size_t>(ne), 1);
   std::vector<char> even(static_cast<std::size_t>(ne), 0);
+  for (Index f = 0; f < nf; ++f) {
+    if (topo.face_size(f) == 3)
+      even[static_cast<std::size_t>(find(topo.halfedge_edge(topo.face_offset(f))))] = 1;
+  }
   for (Index e = 0; e < ne; ++e) {
-    if (on_triangle[static_cast<std::size_t>(e)]) even[static_cast<std::size_t>(find(e))] = 1;
-    if (!(factor > 0.0)) continue;
+    if (!(factor > 0.0)) break;
     const Index h = topo.edge_halfedge(e);
     const Vec3 &a = x[static_cast<std::size_t>(topo.halfedge_origin(h))],
                &b = x[static_cast<std::size_t>(topo.halfedge_dest(h))];
@@ -194,10 +196,10 @@ bool InsertEdgeLoops(const ReferenceSurface& ref, const SizingField& sizing,
     const int k = k_of(e);
     const Index h = topo.edge_halfedge(e);
     const Index a = topo.halfedge_origin(h), b = topo.halfedge_dest(h);
-    if (!creases.empty() && std::binary_search(creases.edges().begin(), creases.edges().end(),
-                                               std::array<std::uint32_t, 2>{
-                                                   static_cast<std::uint32_t>(std::min(a, b)),
-                                                   static_cast<std::uint32_t>(std::max(a, b))})) {
+    if (std::binary_search(
+            crease_edges_in.begin(), crease_edges_in.end(),
+            std::array<std::uint32_t, 2>{static_cast<std::uint32_t>(std::min(a, b)),
+                                         static_cast<std::uint32_t>(std::max(a, b))})) {
       *crease_edges += k;
     }
     if (k == 1) continue;
@@ -338,9 +340,19 @@ bool InputQuads(const std::vector<Vec3>& positions, const std::vector<std::uint3
            .ok()) {
     return false;
   }
-  CompactUnusedVertices(own);
+  // The crease edges in the compacted mesh's vertex indices.
+  std::vector<Index> old_to_new;
+  CompactUnusedVertices(own, &old_to_new);
+  std::vector<std::array<std::uint32_t, 2>> crease_edges;
+  for (const auto& e : keep) {
+    const Index a = old_to_new[e[0]], b = old_to_new[e[1]];
+    if (a == kInvalidIndex || b == kInvalidIndex) continue;
+    crease_edges.push_back(
+        {static_cast<std::uint32_t>(std::min(a, b)), static_cast<std::uint32_t>(std::max(a, b))});
+  }
+  std::sort(crease_edges.begin(), crease_edges.end());
   int crease_control_edges = 0;
-  if (!InsertEdgeLoops(ref, sizing, creases, options.input_quads_edge_factor, own,
+  if (!InsertEdgeLoops(ref, sizing, crease_edges, options.input_quads_edge_factor, own,
                        &crease_control_edges)) {
     return false;
   }

@@ -315,14 +315,8 @@ Status CharacterPoser::Evaluate(std::vector<PosedPrimitive>* out) {
       const bool want_normals = IsTriangleMode(prim.mode);
       if (want_normals && o.normals.size() != o.positions.size()) o.normals.clear();
       // ... replaced on the surfaces by the posed displaced surface.
-      const std::vector<VertexBinding>* src = nullptr;
-      if (static_cast<std::size_t>(dp.mesh) < st.sources.size() &&
-          static_cast<std::size_t>(dp.primitive) <
-              st.sources[static_cast<std::size_t>(dp.mesh)].size()) {
-        src =
-            &st.sources[static_cast<std::size_t>(dp.mesh)][static_cast<std::size_t>(dp.primitive)];
-      }
-      if (src != nullptr && !src->empty()) {
+      const std::vector<VertexBinding>* src = &surface_locations(d);
+      if (!src->empty()) {
         if (want_normals && o.normals.empty()) o.normals.assign(o.positions.size(), Vec3(0, 0, 1));
         const glm::dmat4& node_world = st.world[static_cast<std::size_t>(dp.node)];
         const std::vector<int>& inst_of = st.instance_of[d];
