@@ -142,3 +142,98 @@ TEST_CASE("a refit after moving control vertices equals a fit from scratch", "[p
     REQUIRE(refit[v].coeff[0][0] == moved[v]);
   }
 }
+
+TEST_CASE("seam patch fits: the boundary restriction depends on the crease alone", "[patch]") {
+  // A cut crease (docs/characters.md, "Hard edges cut open"): along its boundary rays a seam
+  // patch is fixed by the vertex and its two boundary neighbours (ring entries 0 and n - 1),
+  // so the two sides of the cut, whose other ring vertices differ, meet in one curve.
+  struct Seam {
+    VertexKind kind;
+    SeamMode mode;
+  };
+  for (ChartType type : {ChartType::kCharacteristicMap, ChartType::kIsodistance}) {
+    for (const Seam& s : {Seam{VertexKind::kCrease, SeamMode::kSmooth},
+                          Seam{VertexKind::kConvexCorner, SeamMode::kSmooth},
+                          Seam{VertexKind::kConcaveCorner, SeamMode::kSmooth},
+                          Seam{VertexKind::kConvexCorner, SeamMode::kCorner},
+                          Seam{VertexKind::kConcaveCorner, SeamMode::kCorner}}) {
+      for (int k = 1; k <= 6; ++k) {
+        const ChartParams chart = MakeChartParams(k, s.kind, type);
+        INFO("kind " << int(s.kind) << " mode " << int(s.mode) << " K=" << k);
+        std::vector<double> op;
+        REQUIRE(ComputeSeamPatchFitOperator(chart, s.mode, &op).ok());
+        const std::vector<Vec2> z = PatchRingChartPositions(chart);
+        const int n = static_cast<int>(z.size());
+        REQUIRE(op.size() == 8u * static_cast<std::size_t>(n));
+        // Values on the ring: the boundary neighbours d1 (ray 1, chart +x) and d2 (the last
+        // entry), the vertex at 0, and arbitrary others; then the same with every other ring
+        // value changed: the patch along both rays is the same.
+        const Vec3 d1(1.0, 0.3, -0.2), d2(-0.9, 0.4, 0.5);
+        auto ring = [&](double other_scale) {
+          return [&, other_scale](Vec2 w) {
+            for (int i = 0; i < n; ++i) {
+              if (glm::length(w - z[static_cast<std::size_t>(i)]) > 1e-12) continue;
+              if (i == 0) return d1;
+              if (i == n - 1) return d2;
+              return other_scale * Vec3(0.7 * w.x - 0.2, w.y * w.y + 0.4, 0.3 * w.x * w.y + 1.1);
+            }
+            return Vec3(0.0);  // the vertex
+          };
+        };
+        const LocalPatch a = FitRing(chart, op, ring(1.0)), b = FitRing(chart, op, ring(-2.5));
+        const Vec2 u2 = z.back();  // the second ray's direction
+        for (int i = 0; i <= 10; ++i) {
+          const double t = i / 10.0;
+          for (const Vec2 dir : {Vec2(1.0, 0.0), u2}) {
+            PatchJet ja, jb;
+            EvaluatePatch(a, t * dir, &ja);
+            EvaluatePatch(b, t * dir, &jb);
+            CHECK(glm::length(ja.p - jb.p) < 1e-12);
+          }
+        }
+        // The neighbours are interpolated: the curve reaches them at t = 1; in kSmooth it is
+        // the parabola v + a t + b t^2 with t = 1 at d1 and -1 at d2, in kCorner a line to each.
+        for (int r = 0; r < 2; ++r) {
+          const Vec2 dir = r == 0 ? Vec2(1.0, 0.0) : u2;
+          const Vec3 end = r == 0 ? d1 : d2;
+          for (int i = 0; i <= 4; ++i) {
+            const double t = i / 4.0;
+            const double tt = r == 0 ? t : -t;
+            const Vec3 expect = s.mode == SeamMode::kSmooth
+                                    ? 0.5 * (d1 - d2) * tt + 0.5 * (d1 + d2) * tt * tt
+                                    : t * end;
+            PatchJet j;
+            EvaluatePatch(a, t * dir, &j);
+            CHECK(glm::length(j.p - expect) < 1e-12);
+          }
+        }
+        // A plane through the ring is reproduced where the chart's rays are opposite (a
+        // half-disk) or the mode draws straight lines to the neighbours.
+        if (s.kind == VertexKind::kCrease || s.mode == SeamMode::kCorner) {
+          const Vec3 v0(0.0), pa(1.0, 0.2, -0.5), pb(-0.4, 0.9, 0.1);
+          const LocalPatch p = FitRing(chart, op, [&](Vec2 w) { return v0 + w.x * pa + w.y * pb; });
+          for (int m = 0; m < 3; ++m)
+            for (int q = 0; q < 3; ++q) {
+              const Vec3 expect = m == 1 && q == 0 ? pa : m == 0 && q == 1 ? pb : Vec3(0.0);
+              if (m == 0 && q == 0) continue;
+              CHECK(glm::length(p.coeff[m][q] - expect) < 1e-10);
+            }
+        }
+      }
+    }
+  }
+  // kNone is the ordinary operator; an interior chart, or corner lines on a half-disk (both
+  // rays on one axis), are refused.
+  const ChartParams crease = MakeChartParams(3, VertexKind::kCrease, ChartType::kCharacteristicMap);
+  std::vector<double> plain, none;
+  REQUIRE(ComputePatchFitOperator(crease, &plain).ok());
+  REQUIRE(ComputeSeamPatchFitOperator(crease, SeamMode::kNone, &none).ok());
+  CHECK(plain == none);
+  std::vector<double> op;
+  CHECK(ComputeSeamPatchFitOperator(crease, SeamMode::kCorner, &op).code() ==
+        StatusCode::kInvalidInput);
+  CHECK(ComputeSeamPatchFitOperator(
+            MakeChartParams(4, VertexKind::kInterior, ChartType::kCharacteristicMap),
+            SeamMode::kSmooth, &op)
+            .code() == StatusCode::kInvalidInput);
+}

@@ -2,6 +2,7 @@
 // Offline assembly of the manifold domain: chart kinds, shared patch-fit operators, patches.
 #include "dermis/offline/build/domain_builder.h"
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -49,7 +50,8 @@ std::vector<VertexKind> ClassifyVertices(const MeshTopology& topo,
 }
 
 Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>& positions,
-                           const DomainOptions& options, std::unique_ptr<ManifoldDomain>* out) {
+                           const DomainOptions& options, std::unique_ptr<ManifoldDomain>* out,
+                           const std::vector<std::uint8_t>* seam) {
   if (positions.size() != static_cast<size_t>(topology.num_vertices())) {
     return Status::InvalidInput("position count does not match the topology");
   }
@@ -59,11 +61,50 @@ Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>
   data.vertex_kind = ClassifyVertices(topology, positions);
   data.vertex_operator.assign(topology.num_vertices(), kInvalidIndex);
   data.operator_offsets.assign(1, 0);
-  std::map<std::pair<int, int>, Index> cache;
+  // Seam vertices (a cut crease's boundary, CutAlongCreases): the chart and the operator follow
+  // the side's boundary at the vertex. Where its two boundary edges run nearly straight on
+  // (more than 150 degrees apart) a half-disk chart whose boundary restriction is the
+  // parabola through the two neighbours (kSmooth); a sharper turn is a corner, convex or
+  // concave by the sum of its corner angles, with straight lines to the neighbours (kCorner).
+  // A side of a straight crease thus never gets a corner chart, whose two rays at right angles
+  // would have to open to a straight line (a patch with a singular Jacobian, a flap).
+  std::vector<SeamMode> modes(static_cast<std::size_t>(topology.num_vertices()), SeamMode::kNone);
+  for (Index v = 0; seam && v < topology.num_vertices(); ++v) {
+    if (static_cast<std::size_t>(v) >= seam->size() || (*seam)[static_cast<std::size_t>(v)] == 0)
+      continue;
+    if (!topology.is_boundary_vertex(v)) {
+      return Status::InvalidInput("vertex " + std::to_string(v) +
+                                  " is on a seam but not on a boundary");
+    }
+    const int k = topology.valence(v);
+    const RingCorner first = topology.ring(v, 0), last = topology.ring(v, k - 1);
+    const Index n1 = topology.face_vertex(first.face, (first.corner + 1) % 4);
+    const Index n2 = topology.face_vertex(last.face, (last.corner + 3) % 4);
+    const double turn = Angle(positions[n1] - positions[v], positions[n2] - positions[v]);
+    VertexKind& kind = data.vertex_kind[static_cast<std::size_t>(v)];
+    if ((*seam)[static_cast<std::size_t>(v)] == 1 && turn > 150.0 / 180.0 * kPi) {
+      kind = VertexKind::kCrease;
+      modes[static_cast<std::size_t>(v)] = SeamMode::kSmooth;
+    } else {
+      double sum = 0.0;
+      for (int i = 0; i < k; ++i) {
+        const RingCorner rc = topology.ring(v, i);
+        sum += Angle(positions[topology.face_vertex(rc.face, (rc.corner + 1) % 4)] - positions[v],
+                     positions[topology.face_vertex(rc.face, (rc.corner + 3) % 4)] - positions[v]);
+      }
+      kind = sum < kPi ? VertexKind::kConvexCorner : VertexKind::kConcaveCorner;
+      modes[static_cast<std::size_t>(v)] = SeamMode::kCorner;
+    }
+  }
+  auto seam_of = [&](Index v) { return modes[static_cast<std::size_t>(v)]; };
+
+  std::map<std::array<int, 3>, Index> cache;
   for (Index v = 0; v < topology.num_vertices(); ++v) {
     const int k = topology.valence(v);
     if (k == 0) return Status::InvalidInput("vertex " + std::to_string(v) + " is used by no face");
-    const auto key = std::make_pair(k, static_cast<int>(data.vertex_kind[v]));
+    const SeamMode mode = seam_of(v);
+    const std::array<int, 3> key = {k, static_cast<int>(data.vertex_kind[v]),
+                                    static_cast<int>(mode)};
     auto it = cache.find(key);
     if (it == cache.end()) {
       if (!topology.is_boundary_vertex(v) && k < 3) {
@@ -71,9 +112,9 @@ Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>
                                     std::to_string(k) + " (at least 3 needed)");
       }
       std::vector<double> op;
-      Status s =
-          ComputePatchFitOperator(MakeChartParams(k, data.vertex_kind[v], options.chart_type), &op);
-      if (!s.ok()) return s;
+      Status s = ComputeSeamPatchFitOperator(
+          MakeChartParams(k, data.vertex_kind[v], options.chart_type), mode, &op);
+      if (!s.ok()) return s.WithContext("vertex " + std::to_string(v));
       const Index id = static_cast<Index>(data.operator_offsets.size()) - 1;
       data.operator_values.insert(data.operator_values.end(), op.begin(), op.end());
       data.operator_offsets.push_back(static_cast<Index>(data.operator_values.size()));
@@ -89,7 +130,7 @@ Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>
 }
 
 Status BuildControlSurface(const PolygonMesh& mesh, const DomainOptions& options,
-                           ControlSurface* out) {
+                           ControlSurface* out, const std::vector<std::uint8_t>* seam) {
   Status s = ValidatePolygonMesh(mesh);
   if (s.ok()) s = CheckCoordinateRange(mesh);
   if (!s.ok()) return s;
@@ -104,7 +145,7 @@ Status BuildControlSurface(const PolygonMesh& mesh, const DomainOptions& options
   s = MeshTopology::BuildQuads(static_cast<Index>(cs.control.positions.size()), cs.control.quads,
                                &topo, &namer);
   if (!s.ok()) return s.WithContext(mesh.source_name.empty() ? "mesh" : mesh.source_name);
-  s = BuildManifoldDomain(topo, cs.control.positions, options, &cs.domain);
+  s = BuildManifoldDomain(topo, cs.control.positions, options, &cs.domain, seam);
   if (!s.ok()) return s.WithContext(mesh.source_name.empty() ? "mesh" : mesh.source_name);
   cs.patches.resize(cs.control.positions.size());
   cs.domain->FitPatches(cs.control.positions.data(), cs.patches.data());

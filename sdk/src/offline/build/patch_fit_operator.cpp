@@ -113,4 +113,106 @@ Status ComputePatchFitOperator(const ChartParams& chart, std::vector<double>* op
   return Status::Ok();
 }
 
+Status ComputeSeamPatchFitOperator(const ChartParams& chart, SeamMode mode, std::vector<double>* op,
+                                   int* rank) {
+  if (mode == SeamMode::kNone) return ComputePatchFitOperator(chart, op, rank);
+  if (chart.kind == VertexKind::kInterior) {
+    return Status::InvalidInput("seam patch fit: an interior chart has no boundary rays");
+  }
+  const std::vector<Vec2> z = PatchRingChartPositions(chart);
+  const int n = static_cast<int>(z.size());
+  const int i1 = 0, i2 = n - 1;  // the boundary neighbours
+  // Each ray's axis (0: x, 1: y) and sign; the monomials of kPatchMonomials: x, y, x^2, xy,
+  // y^2, x^2 y, x y^2, x^2 y^2.
+  int axis[2], sign[2];
+  for (int r = 0; r < 2; ++r) {
+    const Vec2 u = z[r == 0 ? i1 : i2];
+    if (std::abs(std::abs(u.x) - 1.0) < 1e-9 && std::abs(u.y) < 1e-9) {
+      axis[r] = 0, sign[r] = u.x > 0.0 ? 1 : -1;
+    } else if (std::abs(std::abs(u.y) - 1.0) < 1e-9 && std::abs(u.x) < 1e-9) {
+      axis[r] = 1, sign[r] = u.y > 0.0 ? 1 : -1;
+    } else {
+      return Status::Internal("seam patch fit: a boundary neighbour is off the chart's axes");
+    }
+  }
+  if (mode == SeamMode::kCorner && axis[0] == axis[1]) {
+    return Status::InvalidInput("seam patch fit: a corner needs its rays on two axes");
+  }
+  const int lin[2] = {0, 1}, quad[2] = {2, 4};
+  // Fixed coefficients as rows over the ring deltas.
+  Eigen::MatrixXd fixed = Eigen::MatrixXd::Zero(8, n);
+  bool is_fixed[8] = {false, false, false, false, false, false, false, false};
+  for (int r = 0; r < 2; ++r) {
+    const int a = axis[r], i = r == 0 ? i1 : i2;
+    Eigen::RowVectorXd line = Eigen::RowVectorXd::Zero(n), curve = Eigen::RowVectorXd::Zero(n);
+    if (mode == SeamMode::kSmooth) {
+      // Q(t) = v + a t + b t^2, t = +1 at the first neighbour and -1 at the second: a =
+      // (d1 - d2) / 2, b = (d1 + d2) / 2; ray r runs towards t = +1 (r = 0) or -1 (r = 1).
+      const double towards = r == 0 ? 1.0 : -1.0;
+      line(i1) = 0.5 * towards, line(i2) = -0.5 * towards;
+      curve(i1) = 0.5, curve(i2) = 0.5;
+    } else {
+      line(i) = 1.0;
+    }
+    fixed.row(lin[a]) = sign[r] * line;
+    fixed.row(quad[a]) = curve;
+    is_fixed[lin[a]] = is_fixed[quad[a]] = true;
+  }
+  std::vector<int> free;
+  for (int j = 0; j < 8; ++j) {
+    if (!is_fixed[j]) free.push_back(j);
+  }
+  const int nf = static_cast<int>(free.size());
+  // The other ring positions: M_free c_free = (E - M_fixed F) delta.
+  const int m = n - 2;
+  Eigen::MatrixXd mf(m, nf), rhs = Eigen::MatrixXd::Zero(m, n);
+  double radius = 0.0;
+  for (int k = 1; k + 1 < n; ++k) {
+    const int row = k - 1;
+    rhs(row, k) = 1.0;
+    for (int j = 0; j < 8; ++j) {
+      const double mono = Pow(z[k].x, kPatchMonomials[j][0]) * Pow(z[k].y, kPatchMonomials[j][1]);
+      if (is_fixed[j]) rhs.row(row) -= mono * fixed.row(j);
+    }
+    for (int c = 0; c < nf; ++c) {
+      const int j = free[static_cast<std::size_t>(c)];
+      mf(row, c) = Pow(z[k].x, kPatchMonomials[j][0]) * Pow(z[k].y, kPatchMonomials[j][1]);
+    }
+  }
+  for (const Vec2& p : z) radius = std::max(radius, std::sqrt(p.x * p.x + p.y * p.y));
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(mf, Eigen::ComputeFullV | Eigen::ComputeThinU);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  const double tol = 1e-10 * (sigma.size() > 0 ? sigma(0) : 0.0);
+  int r = 0;
+  while (r < sigma.size() && sigma(r) > tol) ++r;
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(nf, n);
+  if (r > 0) {
+    a = svd.matrixV().leftCols(r) * sigma.head(r).cwiseInverse().asDiagonal() *
+        svd.matrixU().leftCols(r).transpose() * rhs;
+  }
+  // The full operator c = F + S a; where M_free has a null space N, the thin-plate energy of
+  // the whole patch is least: a -= N (N^T S^T H S N)^{-1} N^T S^T H (F + S a).
+  Eigen::MatrixXd s = Eigen::MatrixXd::Zero(8, nf);
+  for (int c = 0; c < nf; ++c) s(free[static_cast<std::size_t>(c)], c) = 1.0;
+  if (r < nf) {
+    const Eigen::MatrixXd null = svd.matrixV().rightCols(nf - r);
+    const Eigen::Matrix<double, 8, 8> h = ThinPlateGram(radius, chart.sector);
+    const Eigen::MatrixXd g = null.transpose() * s.transpose() * h * s * null;
+    Eigen::LDLT<Eigen::MatrixXd> ldlt(g);
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
+        ldlt.vectorD().minCoeff() <= 1e-12 * ldlt.vectorD().maxCoeff()) {
+      return Status::Internal(
+          "seam patch fit: the thin-plate regulariser does not fix the null space");
+    }
+    a -= null * ldlt.solve(null.transpose() * s.transpose() * h * (fixed + s * a));
+  }
+  const Eigen::MatrixXd full = fixed + s * a;
+  op->assign(static_cast<std::size_t>(8 * n), 0.0);
+  for (int row = 0; row < 8; ++row)
+    for (int col = 0; col < n; ++col)
+      (*op)[static_cast<std::size_t>(row * n + col)] = full(row, col);
+  if (rank) *rank = r + static_cast<int>(8 - nf);
+  return Status::Ok();
+}
+
 }  // namespace dermis

@@ -3,6 +3,7 @@
 /// \brief Offline construction of a manifold domain from a polygon control mesh.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -28,13 +29,21 @@ std::vector<VertexKind> ClassifyVertices(const MeshTopology& topology,
                                          const std::vector<Vec3>& positions);
 
 /// Builds the domain of an all-quad topology: chart kinds from the rest positions, one patch-fit
-/// operator per distinct (valence, kind).
+/// operator per distinct (valence, kind, seam mode). `seam` (optional, per vertex, missing
+/// entries 0; CutAlongCreases() gives it): a non-zero vertex is a side of a cut crease and gets
+/// a seam operator (ComputeSeamPatchFitOperator), so the two sides of the cut meet exactly: a
+/// 1 (inside a chain) whose two boundary edges are more than 150 degrees apart a half-disk
+/// chart (kCrease) with kSmooth, any other a corner chart (convex where its corner angles sum
+/// to less than pi, else concave) with kCorner. A non-zero entry on an interior vertex is
+/// InvalidInput.
 Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>& positions,
-                           const DomainOptions& options, std::unique_ptr<ManifoldDomain>* out);
+                           const DomainOptions& options, std::unique_ptr<ManifoldDomain>* out,
+                           const std::vector<std::uint8_t>* seam = nullptr);
 
 /// The whole chain: validate, quadrangulate, build topology and domain, fit patches.
-/// Errors name the mesh's source, element and line.
+/// Errors name the mesh's source, element and line. `seam`: as BuildManifoldDomain's, indexed
+/// by the mesh's vertices (the quadrangulation's new vertices lie on no seam).
 Status BuildControlSurface(const PolygonMesh& mesh, const DomainOptions& options,
-                           ControlSurface* out);
+                           ControlSurface* out, const std::vector<std::uint8_t>* seam = nullptr);
 
 }  // namespace dermis
