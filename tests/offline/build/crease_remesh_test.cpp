@@ -6,14 +6,18 @@
 // loops").
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include "dermis/offline/build/control_mesh.h"
 #include "dermis/offline/build/crease_chains.h"
+#include "dermis/offline/build/crease_cut.h"
 #include "dermis/offline/build/crease_support.h"
+#include "dermis/offline/build/domain_builder.h"
 #include "dermis/offline/build/quad_pairing.h"
 #include "dermis/offline/build/quad_remesh.h"
 #include "dermis/offline/build/reference_surface.h"
+#include "dermis/surface/surface_evaluator.h"
 
 using namespace dermis;
 
@@ -535,4 +539,182 @@ TEST_CASE("creases: no support rows beside open chains, and bad fractions are re
   REQUIRE(SupportCreaseLoops(cyl.chains, 0.5, 1e-9, to_nan, &nan_target, &res).ok());
   CHECK(res.moved == 0);
   CHECK(nan_target.positions == y);
+}
+
+namespace {
+
+// The domain surface (no displacement) of `control` built with `seam`, and the largest
+// distance between the two sides of every cut edge (boundary edges whose ends lie at the same
+// two positions), sampled at 15 points inside each edge.
+double SeamGap(const PolygonMesh& control, const std::vector<std::uint8_t>& seam,
+               ControlSurface* cs, int* pairs) {
+  REQUIRE(BuildControlSurface(control, DomainOptions{}, cs, &seam).ok());
+  const ManifoldDomain& d = *cs->domain;
+  const MeshTopology& topo = d.topology();
+  const std::vector<Vec3>& x = cs->control.positions;
+  using Key = std::array<double, 3>;
+  auto key = [&](Index v) {
+    const Vec3& p = x[static_cast<std::size_t>(v)];
+    return Key{p.x, p.y, p.z};
+  };
+  std::map<std::pair<Key, Key>, std::vector<Index>> sides;  // half-edges by their ends
+  for (Index h = 0; h < topo.num_halfedges(); ++h) {
+    if (topo.twin(h) != kInvalidIndex) continue;
+    Key a = key(topo.halfedge_origin(h)), b = key(topo.halfedge_dest(h));
+    if (b < a) std::swap(a, b);
+    sides[{a, b}].push_back(h);
+  }
+  double worst = 0.0;
+  *pairs = 0;
+  for (const auto& [ends, hs] : sides) {
+    if (hs.size() != 2) continue;
+    ++*pairs;
+    for (int i = 1; i < 16; ++i) {
+      Vec3 p[2];
+      for (int s = 0; s < 2; ++s) {
+        const Index h = hs[static_cast<std::size_t>(s)];
+        const Index f = topo.halfedge_face(h);
+        const int corner = static_cast<int>(h - topo.face_offset(f));
+        const bool forward = key(topo.halfedge_origin(h)) == ends.first;
+        const double t = forward ? i / 16.0 : 1.0 - i / 16.0;
+        SurfacePoint sp;
+        REQUIRE(EvaluateSurface(d, cs->patches.data(), nullptr, f,
+                                CornerToFace(corner, Vec2(t, 0.0)), &sp));
+        p[s] = sp.position;
+      }
+      worst = std::max(worst, glm::length(p[0] - p[1]));
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("creases: a box cut open along its edges comes out a box, its seams closed") {
+  // Each of the cube's 12 edges is a chain between corners, every control edge on them is
+  // cut: six flat sides, each a surface of its own. With the seam operators the sides' domain
+  // surfaces are exactly flat (every patch a plane: the rings are planar, the seam patches
+  // interpolate the straight crease) and meet exactly along every cut edge.
+  CreaseRemesh box;
+  RemeshWithCreases(GridCube(6), 300, &box);
+  PolygonMesh closed = box.control;
+  CreaseCutResult cut;
+  REQUIRE(CutAlongCreases(box.chains, 1e-9, &box.control, &cut).ok());
+  REQUIRE(ValidatePolygonMesh(box.control).ok());
+  MeshTopology topo;
+  REQUIRE(MeshTopology::Build(box.control.num_vertices(), box.control.face_offsets,
+                              box.control.face_vertices, &topo)
+              .ok());
+  CHECK(topo.num_components() == 6);
+  CHECK(box.control.num_faces() == closed.num_faces());
+  // Every control edge on the cube's edges was cut: each cube-edge vertex has two copies, each
+  // corner three.
+  int on_edges = 0, corners = 0;
+  for (const Vec3& p : closed.positions) {
+    int at_side = 0;  // coordinates at 0 or 1
+    for (int a = 0; a < 3; ++a) at_side += std::abs(p[a]) < 1e-9 || std::abs(p[a] - 1.0) < 1e-9;
+    on_edges += at_side == 2;
+    corners += at_side == 3;
+  }
+  CHECK(corners == 8);
+  CHECK(cut.new_vertices == on_edges + 2 * corners);
+  CHECK(box.control.num_vertices() == closed.num_vertices() + cut.new_vertices);
+  REQUIRE(cut.seam.size() == box.control.positions.size());
+  int kinds[3] = {0, 0, 0};
+  for (Index v = 0; v < box.control.num_vertices(); ++v) {
+    const std::uint8_t s = cut.seam[static_cast<std::size_t>(v)];
+    CHECK(s <= 2);
+    CHECK((s != 0) == topo.is_boundary_vertex(v));
+    ++kinds[s];
+  }
+  CHECK(kinds[2] == 3 * corners);   // the corners' copies: chain ends
+  CHECK(kinds[1] == 2 * on_edges);  // inside the chains
+  ControlSurface cs;
+  int pairs = 0;
+  CHECK(SeamGap(box.control, cut.seam, &cs, &pairs) < 1e-13);
+  CHECK(pairs == cut.cut_edges);
+  double off_side = 0.0;
+  for (Index f = 0; f < cs.domain->num_faces(); ++f) {
+    // The face's side: the coordinate its corners share.
+    const Vec3 c = cs.control.positions[static_cast<std::size_t>(topo.face_vertex(f, 0))];
+    const Vec3 e = cs.control.positions[static_cast<std::size_t>(topo.face_vertex(f, 2))];
+    int axis = 0;
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(c[a] - e[a]) < 1e-12 && (std::abs(c[a]) < 1e-12 || std::abs(c[a] - 1) < 1e-12))
+        axis = a;
+    }
+    for (int i = 0; i <= 4; ++i) {
+      for (int j = 0; j <= 4; ++j) {
+        SurfacePoint sp;
+        REQUIRE(EvaluateSurface(*cs.domain, cs.patches.data(), nullptr, f, Vec2(i / 4.0, j / 4.0),
+                                &sp));
+        off_side = std::max(off_side, std::abs(sp.position[axis] - c[axis]));
+      }
+    }
+  }
+  CHECK(off_side < 1e-12);
+  // Closed (no seam), the same control mesh rounds the edges: the surface leaves the sides.
+  ControlSurface round;
+  REQUIRE(BuildControlSurface(closed, DomainOptions{}, &round).ok());
+  double bulge = 0.0;
+  for (Index f = 0; f < round.domain->num_faces(); ++f) {
+    SurfacePoint sp;
+    REQUIRE(EvaluateSurface(*round.domain, round.patches.data(), nullptr, f, Vec2(0.5), &sp));
+    for (int a = 0; a < 3; ++a)
+      bulge = std::max(bulge, std::max(-sp.position[a], sp.position[a] - 1));
+  }
+  INFO("closed: the rounded box stands " << bulge << " outside the cube");
+  CHECK(bulge > 1e-3);
+  // Bad tolerances are refused and leave the mesh as it was.
+  PolygonMesh again = closed;
+  CHECK(CutAlongCreases(box.chains, -1.0, &again, &cut).code() == StatusCode::kInvalidInput);
+  CHECK(CutAlongCreases(box.chains, HUGE_VAL, &again, &cut).code() == StatusCode::kInvalidInput);
+  CHECK(again.face_vertices == closed.face_vertices);
+}
+
+TEST_CASE("creases: a crease that ends inside the surface is not cut, one across it is") {
+  // A sheet folded along x = 0: 12 x 12 quads over [-1, 1] x [0, 2], z = 0.8 |x| s(y). With
+  // s = 1 the fold (77 degrees) runs from boundary to boundary and the cut splits the sheet in
+  // two; with s falling to 0 from y = 1 on it fades out inside, where a cut would end in a
+  // slit whose two sides one chart cannot close, and nothing is cut.
+  for (const bool through : {true, false}) {
+    TriMesh m;
+    const int n = 12;
+    for (int j = 0; j <= n; ++j) {
+      for (int i = 0; i <= n; ++i) {
+        const double x = -1.0 + 2.0 * i / n, y = 2.0 * j / n;
+        const double s = through ? 1.0 : std::clamp(2.0 - y, 0.0, 1.0);
+        m.x.push_back({x, y, 0.8 * std::abs(x) * s});
+      }
+    }
+    auto id = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) m.Quad(id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+    CreaseRemesh sheet;
+    RemeshWithCreases(m, 150, &sheet);
+    INFO((through ? "fold across" : "fold fading out")
+         << ": " << sheet.chains.num_chains() << " chains");
+    REQUIRE(sheet.chains.num_chains() >= 1);
+    const PolygonMesh before = sheet.control;
+    CreaseCutResult cut;
+    REQUIRE(CutAlongCreases(sheet.chains, 1e-9, &sheet.control, &cut).ok());
+    MeshTopology topo;
+    REQUIRE(MeshTopology::Build(sheet.control.num_vertices(), sheet.control.face_offsets,
+                                sheet.control.face_vertices, &topo)
+                .ok());
+    if (through) {
+      CHECK(cut.cut_edges > 0);
+      CHECK(topo.num_components() == 2);
+      ControlSurface cs;
+      int pairs = 0;
+      CHECK(SeamGap(sheet.control, cut.seam, &cs, &pairs) < 1e-13);
+      CHECK(pairs == cut.cut_edges);
+    } else {
+      CHECK(cut.cut_edges == 0);
+      CHECK(cut.new_vertices == 0);
+      CHECK(topo.num_components() == 1);
+      CHECK(sheet.control.face_vertices == before.face_vertices);
+      for (std::uint8_t s : cut.seam) CHECK(s == 0);
+    }
+  }
 }
