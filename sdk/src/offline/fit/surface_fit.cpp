@@ -14,6 +14,7 @@
 #include "dermis/offline/fit/lost_point_parameters.h"
 #include "dermis/offline/fit/noise_estimate.h"
 #include "dermis/offline/fit/point_fit.h"
+#include "dermis/offline/fit/seam_displacement.h"
 #include "dermis/offline/fit/surface_projection.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/surface/surface_evaluator.h"
@@ -166,6 +167,7 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   progress("control mesh", 0);
   Clock::time_point t0 = Clock::now();
   FittedSurface fitted;
+  std::vector<std::uint8_t> seam;  // per control vertex, where the mesh was cut open
   if (input.control) {
     fitted.control_mesh = *input.control;
     CompactUnusedVertices(&fitted.control_mesh);
@@ -183,6 +185,10 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     cm.remesh = options.remesh;
     Status s = BuildControlMesh(*input.mesh, cm, &fitted.control_mesh, &rep.control_mesh);
     if (!s.ok()) return s;
+    if (options.cut_control_mesh) {
+      s = options.cut_control_mesh(&fitted.control_mesh, &seam);
+      if (!s.ok()) return s.WithContext(where);
+    }
     if (options.place_control_vertices) {
       const std::vector<Index> faces = fitted.control_mesh.face_vertices;
       const std::vector<Index> offsets = fitted.control_mesh.face_offsets;
@@ -195,7 +201,8 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
       }
     }
   }
-  Status s = BuildControlSurface(fitted.control_mesh, options.domain, &fitted.surface);
+  Status s = BuildControlSurface(fitted.control_mesh, options.domain, &fitted.surface,
+                                 seam.empty() ? nullptr : &seam);
   if (!s.ok()) return s;
   const ManifoldDomain& domain = *fitted.surface.domain;
   const LocalPatch* patches = fitted.surface.patches.data();
@@ -326,6 +333,10 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     BsplineDisplacementData data;
     s = FitAdaptiveDisplacement(half, targets, aopt, &data, &rep.displacement_fit);
     if (!s.ok()) return s.WithContext(where);
+    if (!seam.empty()) {
+      s = ZeroDisplacementOnSeams(domain, seam, &data);
+      if (!s.ok()) return s.WithContext(where);
+    }
     fitted.displacement = BsplineDisplacement::Create(std::move(data), domain.num_vertices(), &s);
   } else {
     fitted.displacement = MakeDisplacement(domain, GatherSamples(fits, true), dopt, &s);

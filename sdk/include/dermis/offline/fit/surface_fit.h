@@ -89,6 +89,12 @@ struct FitOptions {
   /// (CharacterFitOptions::crease_support); a hook the caller set runs after both. The
   /// report's control-mesh quality is measured before the moves.
   std::function<void(PolygonMesh* control)> place_control_vertices;
+  /// Called on a control mesh built from the data before place_control_vertices; may change
+  /// its faces and add vertices, and fills `seam` with a SeamMode per vertex
+  /// (dermis/offline/build/patch_fit_operator.h; empty: none) for the domain builder. Empty:
+  /// none. FitCharacter sets it on a part whose control mesh keeps hard creases, cutting the
+  /// mesh open along them (CharacterFitOptions::cut_creases, CutAlongCreases()).
+  std::function<Status(PolygonMesh* control, std::vector<std::uint8_t>* seam)> cut_control_mesh;
 };
 
 /// What to fit.
