@@ -35,7 +35,7 @@
 //                             [--creases-ignore-shading] (smooth-shaded sharp edges are creases)
 //                             [--input-quads R] (characters: the input's own quads; 0: off)
 //                             [--crease-support K] (support rows beside closed crease loops; 1:
-//                             off)
+//                             off) [--creases-closed] (no cut along hard creases)
 //                             [--detail] [--mba]
 // --density, --finest-passes and --smoothing set the paper's per-chart MBA (--mba); the default
 // displacement fit is the adaptive one (docs/fitting.md, "Adaptive displacement levels").
@@ -199,6 +199,7 @@ struct Settings {
   bool no_crease_remesh = false;  ///< --no-crease-remesh: the remesh ignores creases.
   bool creases_ignore_shading = false;  ///< --creases-ignore-shading: smooth-shaded creases too.
   double crease_support = -1.0;         ///< --crease-support K; -1: CharacterFitOptions' default
+  bool creases_closed = false;          ///< --creases-closed: no cut along hard creases
   double input_quads = -1.0;            ///< --input-quads R; -1: CharacterFitOptions' default
   int compare_without_creases = -1;     ///< --compare-without-creases 0|1 (-1: the default).
   int compare_simplified = -1;          ///< --compare-simplified 0|1 (-1: the default).
@@ -806,6 +807,7 @@ int RunCharacters(const Settings& st) {
     if (st.no_crease_remesh) options.remesh_creases = false;
     if (st.creases_ignore_shading) options.creases_follow_shading = false;
     if (st.crease_support >= 0.0) options.crease_support = st.crease_support;
+    if (st.creases_closed) options.cut_creases = false;
     if (st.input_quads >= 0.0) options.input_quads = st.input_quads;
     if (st.compare_without_creases >= 0)
       options.compare_without_creases = st.compare_without_creases != 0;
@@ -904,13 +906,14 @@ int RunCharacters(const Settings& st) {
       std::printf(
           "  %s part %zu: %s, %d control vertices (target %d), valence 4 %.1f%%, corners "
           "%.1f..%.1f deg; creases: %d of %d source edges kept, %d chains (%d closed), %d "
-          "control crease edges; support rows: %d loops, %d vertices moved; control-vertex "
-          "fit: %d rounds%s%s%s\n",
+          "control crease edges; support rows: %d loops, %d vertices moved; cut open: %d edges, "
+          "%d vertices added; control-vertex fit: %d rounds%s%s%s\n",
           name, p, c.method.c_str(), c.quality.vertices, c.quality.target_vertices,
           100.0 * c.quality.valence4_share, c.quality.min_corner_angle_deg,
           c.quality.max_corner_angle_deg, c.quality.crease_edges_kept, c.quality.crease_edges,
           c.quality.crease_chains, c.quality.crease_closed_chains, c.quality.control_crease_edges,
-          c.crease_support_loops, c.crease_support_vertices, c.control_fit_rounds,
+          c.crease_support_loops, c.crease_support_vertices, c.crease_cut_edges,
+          c.crease_cut_vertices, c.control_fit_rounds,
           c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str(),
           c.quality.input_quads ? ("; the input's own quads (the remesh had " +
                                    std::to_string(c.quality.remesh_vertices) + " vertices)")
@@ -998,6 +1001,8 @@ int main(int argc, char** argv) {
       st.no_crease_remesh = true;
     } else if (std::strcmp(argv[i], "--input-quads") == 0 && i + 1 < argc) {
       st.input_quads = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--creases-closed") == 0) {
+      st.creases_closed = true;
     } else if (std::strcmp(argv[i], "--crease-support") == 0 && i + 1 < argc) {
       st.crease_support = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--creases-ignore-shading") == 0) {

@@ -156,6 +156,8 @@ expect_run(2 "--input-quads applies to a character" ${DERMIS} fit ${WORK}/dense_
            -o ${WORK}/bad_refit.dsurf --input-quads 1.5)
 expect_run(2 "--input-quads: must be 0 or in \\[1, 1e6\\]" ${DERMIS} fit ${WORK}/dense_torus.obj
            -o ${WORK}/bad_refit.dsurf --input-quads 0.5)
+expect_run(2 "--creases-closed applies to a character" ${DERMIS} fit ${WORK}/dense_torus.obj
+           -o ${WORK}/bad_refit.dsurf --creases-closed)
 # --refit=false asks for nothing a surface lacks (the input is missing: exit 1, not 2).
 expect_run(1 "missing\\.obj" ${DERMIS} fit ${WORK}/missing.obj -o ${WORK}/bad_refit.dsurf
            --refit=false)

@@ -60,6 +60,7 @@ struct FitArgs {
   double crease_smoothing = CharacterFitOptions{}.crease_smoothing;
   double vertex_weight = CharacterFitOptions{}.vertex_weight;
   bool creases_ignore_shading = false;
+  bool creases_closed = false;
   double crease_support = CharacterFitOptions{}.crease_support;
   double input_quads = CharacterFitOptions{}.input_quads;
   bool refit = false;
@@ -113,6 +114,8 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
       m["control_crease_edges"] = q.control_crease_edges;
       m["crease_support_loops"] = c.crease_support_loops;
       m["crease_support_vertices"] = c.crease_support_vertices;
+      m["crease_cut_edges"] = c.crease_cut_edges;
+      m["crease_cut_vertices"] = c.crease_cut_vertices;
     }
     if (q.grown_target > 0) {
       m["grown_target"] = q.grown_target;
@@ -257,6 +260,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   options_json["vertex-weight"] = options.vertex_weight;
   options_json["creases-ignore-shading"] = !options.creases_follow_shading;
   options_json["crease-support"] = options.crease_support;
+  options_json["creases-closed"] = !options.cut_creases;
   options_json["input-quads"] = options.input_quads;
   options_json["refit"] = a.refit;
   Json j;
@@ -319,6 +323,7 @@ int RunFitCharacter(const FitArgs& a) {
   options.crease_smoothing = a.crease_smoothing;
   options.vertex_weight = a.vertex_weight;
   options.creases_follow_shading = !a.creases_ignore_shading;
+  options.cut_creases = !a.creases_closed;
   options.crease_support = a.crease_support;
   options.input_quads = a.input_quads;
   ApplyDisplacementArgs(a, &options.fit.displacement);
@@ -632,6 +637,10 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                 "Characters: every edge sharper than the crease angle is a crease, even where the "
                 "source shades it smooth (by default such an edge is rounded as its renderer "
                 "draws it; docs/characters.md, \"Smooth-shaded parts follow their shading\")");
+  cmd->add_flag("--creases-closed", args->creases_closed,
+                "Characters: keep hard creases closed (rounded by the smooth surface, with support "
+                "rows beside closed loops) instead of cutting the control mesh open along them "
+                "(docs/characters.md, \"Hard edges cut open\")");
   cmd->add_option("--crease-support", args->crease_support,
                   "Characters: the control vertices beside a closed crease loop (a cap's rim) "
                   "move towards it, keeping this fraction of their distance, so the rim comes "
@@ -681,6 +690,7 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         if (args->creases_ignore_shading) {
           args->character_only.push_back("--creases-ignore-shading");
         }
+        if (args->creases_closed) args->character_only.push_back("--creases-closed");
         for (const char* name : {"--control-vertices", "--control-fit", "--patch-agreement",
                                  "--noisy-ratio", "--clean-rounds"}) {
           if (cmd->count(name) > 0) args->automatic_only.push_back(name);

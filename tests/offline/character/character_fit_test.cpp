@@ -435,8 +435,10 @@ TEST_CASE("character: rows of samples beside a crease keep the surface from over
   CharacterFitOptions options;
   options.fit.threads = 2;
   // The rows alone: with the support rows beside the rims (crease_support) the fit without
-  // rows is closer (0.0062 of the part's scale) and the rows' gain smaller.
+  // rows is closer (0.0062 of the part's scale) and the rows' gain smaller. Both on the rims
+  // kept closed (cut open, the rims need neither: the next file's tests).
   options.crease_support = 1.0;
+  options.cut_creases = false;
   CharacterFitOptions no_rows = options;
   no_rows.crease_rows = false;
   Character with, without;
@@ -468,8 +470,10 @@ TEST_CASE("character: support rows beside a cap's rim sharpen it", "[heavy]") {
   CharacterFitOptions options;
   options.fit.threads = 2;
   // Both on the crease-keeping control mesh (the plain remesh's fit, compared by default, has
-  // no rims to support and is kept here either way).
+  // no rims to support and is kept here either way), the rims closed (cut open they have no
+  // rounding for support rows to narrow, and get none).
   options.compare_without_creases = false;
+  options.cut_creases = false;
   CharacterFitOptions off = options;
   off.crease_support = 1.0;
   Character with, without;
@@ -551,6 +555,7 @@ TEST_CASE("character: heavier vertices keep the bound export's error under the s
   CharacterFitOptions light;
   light.fit.threads = 2;
   light.vertex_weight = 1.0;
+  light.cut_creases = false;  // the edges closed, rounded by the smooth surface
   CharacterFitOptions heavy = light;
   heavy.vertex_weight = 4.0;
   Character a, b;

@@ -17,6 +17,7 @@
 
 #include "area_samples.h"
 #include "dermis/offline/build/crease_chains.h"
+#include "dermis/offline/build/crease_cut.h"
 #include "dermis/offline/build/crease_support.h"
 #include "dermis/offline/build/reference_surface.h"
 #include "dermis/offline/character/skin_transfer.h"
@@ -324,7 +325,11 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   if (part_creases.hard) fo.control_fit_iterations = 0;
   // Support rows beside the part's closed crease loops (CharacterFitOptions::crease_support),
   // on the crease-keeping control mesh only.
-  const bool supported = creases.hard && options.crease_support < 1.0;
+  // The cut needs the adaptive displacement, whose levels ZeroDisplacementOnSeams makes vanish
+  // on the cut.
+  const bool cut = creases.hard && options.cut_creases &&
+                   fo.displacement.method == DisplacementMethod::kAdaptive;
+  const bool supported = creases.hard && options.crease_support < 1.0 && !cut;
   // The part's triangles, for the moves of its control vertices below.
   auto tree = std::make_shared<TriangleDistanceTree>();
   if (shading.curved() || supported) {
@@ -372,6 +377,19 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
       if (then) then(control);
     };
   }
+  // The cut runs on the remesh's own positions (its crease vertices on the chains), before
+  // any move.
+  auto cut_result = std::make_shared<CreaseCutResult>();
+  if (cut) {
+    const double tolerance = 1e-7 * Diagonal(dense.positions);
+    fo.cut_control_mesh = [ref = creases.ref, chains = creases.chains, tolerance, cut_result](
+                              PolygonMesh* control, std::vector<std::uint8_t>* seam) {
+      (void)ref;  // the chains' surface, kept alive with them
+      Status s = CutAlongCreases(*chains, tolerance, control, cut_result.get());
+      if (s.ok()) *seam = cut_result->seam;
+      return s;
+    };
+  }
   FitInput input;
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
   if (options.samples_per_control_edge > 0.0) {
@@ -417,6 +435,8 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   if (!s.ok()) return s.message();
   fr->control_mesh.crease_support_loops = support->loops;
   fr->control_mesh.crease_support_vertices = support->moved;
+  fr->control_mesh.crease_cut_edges = cut_result->cut_edges;
+  fr->control_mesh.crease_cut_vertices = cut_result->new_vertices;
   const bool kept_creases =
       fr->control_mesh.method == "remesh" && fr->control_mesh.quality.crease_edges_kept > 0;
   if (crease_fit && !kept_creases) {

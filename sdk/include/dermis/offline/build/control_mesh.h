@@ -53,6 +53,10 @@ struct ControlMeshInfo {
   /// (CharacterFitOptions::crease_support; 0 where none were placed).
   int crease_support_loops = 0;
   int crease_support_vertices = 0;
+  /// Control edges cut open along hard creases and the vertices the cut added
+  /// (CharacterFitOptions::cut_creases; 0 where nothing was cut).
+  int crease_cut_edges = 0;
+  int crease_cut_vertices = 0;
   /// Rounds of the control-vertex fit its vertices went through (characters: the parts without
   /// hard creases, CharacterFitOptions::fit; FitReport::control_fit_rounds for a surface).
   int control_fit_rounds = 0;

@@ -138,6 +138,13 @@ struct CharacterFitOptions {
   /// 0.41 %). Open chains get none: rows beside them rippled RiggedFigure's and the Fox's flat
   /// sides. In (0, 1]; 1: off; anything else is refused by FitCharacter.
   double crease_support = 0.5;
+  /// On a control mesh that keeps hard creases: the mesh is cut open along them
+  /// (CutAlongCreases), each side a surface with a boundary there, the two boundaries one curve
+  /// (the seam patch operators, ComputeSeamPatchFitOperator), so the part keeps its hard edges
+  /// as its renderer draws them instead of rounding them with a lip beside each
+  /// (docs/characters.md, "Hard edges cut open"). Support rows (crease_support) are not
+  /// placed then: there is no rounding for them to narrow.
+  bool cut_creases = true;
   /// A part modelled in quads and exported as triangles gets its own quads back as its control
   /// mesh (QuadRemeshOptions::input_quads_max_ratio): where its triangles pair back into quads
   /// (with edge loops and any leftover triangle made quads) as regular as the remesh, with
