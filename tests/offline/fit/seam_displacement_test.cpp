@@ -1,12 +1,18 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 #include "dermis/offline/fit/seam_displacement.h"
 
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <vector>
 
+#include "dermis/offline/build/crease_chains.h"
+#include "dermis/offline/build/crease_cut.h"
 #include "dermis/offline/build/domain_builder.h"
+#include "dermis/offline/build/reference_surface.h"
+#include "dermis/offline/fit/surface_fit.h"
 #include "dermis/surface/surface_evaluator.h"
 
 using namespace dermis;
@@ -148,4 +154,103 @@ TEST_CASE("seam displacement: the displaced sides of a cut meet, the rest is unt
   BsplineDisplacementData fewer = before;
   fewer.num_levels.pop_back();
   CHECK(ZeroDisplacementOnSeams(domain, seam, &fewer).code() == StatusCode::kInvalidInput);
+}
+
+TEST_CASE("seam displacement: a fit cut open along a fold keeps its two sides together") {
+  // FitSurface with FitOptions::cut_control_mesh (what FitCharacter sets on a part with hard
+  // creases): a sheet folded along x = 0 (z = 0.6 |x| + a ripple the displacement has to
+  // carry), 24 x 24 quads, its control mesh keeping the fold and cut open along it. The two
+  // fitted sides, displacement included, meet along the whole fold; no control-vertex fit
+  // runs on the cut mesh; the MBA displacement is refused with a cut.
+  PolygonMesh sheet;
+  sheet.source_name = "folded sheet";
+  const int n = 24;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      const double x = -1.0 + 2.0 * i / n, y = 2.0 * j / n;
+      sheet.positions.push_back({x, y, 0.6 * std::abs(x) + 0.01 * std::sin(5.0 * y) * x * x});
+    }
+  }
+  auto id = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      sheet.AddFace({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  std::vector<std::uint32_t> triangles;
+  for (Index f = 0; f < sheet.num_faces(); ++f) {
+    const Index* v = &sheet.face_vertices[static_cast<std::size_t>(sheet.face_offsets[f])];
+    for (int k : {0, 1, 2, 0, 2, 3}) triangles.push_back(static_cast<std::uint32_t>(v[k]));
+  }
+  auto ref = std::make_shared<ReferenceSurface>();
+  REQUIRE(ref->Build(sheet.positions, triangles, "folded sheet").ok());
+  auto chains = std::make_shared<CreaseChains>();
+  chains->Build(*ref, 30.0, 80.0);
+  REQUIRE(chains->num_chains() == 1);
+  FitInput input;
+  input.points = sheet.positions;
+  input.mesh = &sheet;
+  FitOptions options;
+  options.threads = 2;
+  options.holdout = 0.0;
+  options.control_vertices = 120;
+  options.remesh.crease_angle_deg = 30.0;
+  options.control_fit_iterations = 2;  // asked for, and not run on the cut mesh
+  auto cut = std::make_shared<CreaseCutResult>();
+  options.cut_control_mesh = [ref, chains, cut](PolygonMesh* control,
+                                                std::vector<std::uint8_t>* seam) {
+    Status s = CutAlongCreases(*chains, 1e-9, control, cut.get());
+    if (s.ok()) *seam = cut->seam;
+    return s;
+  };
+  FittedSurface fitted;
+  FitReport report;
+  REQUIRE(FitSurface(input, options, &fitted, &report).ok());
+  CHECK(cut->cut_edges > 0);
+  CHECK(report.control_fit_rounds == 0);
+  const ManifoldDomain& domain = *fitted.surface.domain;
+  const MeshTopology& topo = domain.topology();
+  const std::vector<Vec3>& x = fitted.surface.control.positions;
+  using Key = std::array<double, 3>;
+  auto key = [&](Index v) {
+    const Vec3& p = x[static_cast<std::size_t>(v)];
+    return Key{p.x, p.y, p.z};
+  };
+  std::map<std::pair<Key, Key>, std::vector<Index>> sides;
+  for (Index h = 0; h < topo.num_halfedges(); ++h) {
+    if (topo.twin(h) != kInvalidIndex) continue;
+    Key a = key(topo.halfedge_origin(h)), b = key(topo.halfedge_dest(h));
+    if (b < a) std::swap(a, b);
+    sides[{a, b}].push_back(h);
+  }
+  double gap = 0.0, displaced = 0.0;
+  int pairs = 0;
+  for (const auto& [ends, hs] : sides) {
+    if (hs.size() != 2) continue;
+    ++pairs;
+    for (int i = 1; i < 8; ++i) {
+      Vec3 p[2], q[2];
+      for (int s = 0; s < 2; ++s) {
+        const Index h = hs[static_cast<std::size_t>(s)];
+        const Index f = topo.halfedge_face(h);
+        const int corner = static_cast<int>(h - topo.face_offset(f));
+        const double t = key(topo.halfedge_origin(h)) == ends.first ? i / 8.0 : 1.0 - i / 8.0;
+        SurfacePoint with, without;
+        const Vec2 uv = CornerToFace(corner, Vec2(t, 0.0));
+        REQUIRE(EvaluateSurface(domain, fitted.surface.patches.data(), fitted.displacement.get(), f,
+                                uv, &with));
+        REQUIRE(EvaluateSurface(domain, fitted.surface.patches.data(), nullptr, f, uv, &without));
+        p[s] = with.position;
+        q[s] = without.position;
+      }
+      gap = std::max(gap, glm::length(p[0] - p[1]));
+      displaced = std::max(displaced, glm::length(p[0] - q[0]));
+    }
+  }
+  INFO(pairs << " cut edges: the sides apart by at most " << gap << ", displaced by " << displaced);
+  CHECK(pairs == cut->cut_edges);
+  CHECK(gap < 1e-9);
+  CHECK(displaced < 1e-9);
+  // The fit still follows the ripple away from the fold.
+  CHECK(report.error.max < 0.05);
+  options.displacement.method = DisplacementMethod::kMba;
+  CHECK(FitSurface(input, options, &fitted, &report).code() == StatusCode::kInvalidInput);
 }

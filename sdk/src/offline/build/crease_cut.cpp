@@ -126,17 +126,20 @@ Status CutAlongCreases(const CreaseChains& chains, double tolerance, PolygonMesh
     }
   }
   res.new_vertices = static_cast<int>(positions.size()) - nv;
+  // The cut faces, checked before anything is written.
+  std::vector<Index> faces(control->face_vertices.size());
   for (Index h = 0; h < nh; ++h) {
-    control->face_vertices[static_cast<std::size_t>(h)] = id[static_cast<std::size_t>(find(h))];
+    faces[static_cast<std::size_t>(h)] = id[static_cast<std::size_t>(find(h))];
   }
-  control->positions = std::move(positions);
-  if (!control->vertex_lines.empty()) control->vertex_lines.resize(control->positions.size(), 0);
   // A vertex on the cut that stayed on no boundary (a cut edge whose two ends both had one
   // fan, a one-edge slit: nothing opened there) is no seam vertex.
   MeshTopology after;
-  s = MeshTopology::Build(control->num_vertices(), control->face_offsets, control->face_vertices,
+  s = MeshTopology::Build(static_cast<Index>(positions.size()), control->face_offsets, faces,
                           &after);
   if (!s.ok()) return Status::Internal("crease cut: the cut mesh is invalid: " + s.message());
+  control->face_vertices = std::move(faces);
+  control->positions = std::move(positions);
+  if (!control->vertex_lines.empty()) control->vertex_lines.resize(control->positions.size(), 0);
   res.seam.resize(control->positions.size());
   for (std::size_t v = 0; v < res.seam.size(); ++v) {
     const Index o = origin[v];

@@ -62,12 +62,29 @@ Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>
   data.vertex_operator.assign(topology.num_vertices(), kInvalidIndex);
   data.operator_offsets.assign(1, 0);
   // Seam vertices (a cut crease's boundary, CutAlongCreases): the chart and the operator follow
-  // the side's boundary at the vertex. Where its two boundary edges run nearly straight on
-  // (more than 150 degrees apart) a half-disk chart whose boundary restriction is the
-  // parabola through the two neighbours (kSmooth); a sharper turn is a corner, convex or
-  // concave by the sum of its corner angles, with straight lines to the neighbours (kCorner).
-  // A side of a straight crease thus never gets a corner chart, whose two rays at right angles
-  // would have to open to a straight line (a patch with a singular Jacobian, a flap).
+  // the side's boundary at the vertex. A side inside a chain (mark 1) whose two boundary edges
+  // run nearly straight on (more than 150 degrees apart) gets a half-disk chart whose boundary
+  // restriction is the parabola through the two neighbours (kSmooth), never a corner chart,
+  // whose two rays at right angles would have to open to a straight line (a patch with a
+  // singular Jacobian, a flap). A sharper turn, a junction or the boundary (mark 2) is a
+  // corner, convex or concave by the sum of its corner angles, with straight lines to the
+  // neighbours (kCorner): the only restriction every side at a junction can share, even where
+  // one side's boundary runs straight on (docs/math.md, "Seam patches").
+  if (seam && seam->size() != static_cast<std::size_t>(topology.num_vertices())) {
+    return Status::InvalidInput("seam marks: " + std::to_string(seam->size()) + " for " +
+                                std::to_string(topology.num_vertices()) + " vertices");
+  }
+  if (seam && options.chart_type == ChartType::kFullyComplex) {
+    // p = q on a boundary chart: two sides of a cut with different valences would map the
+    // cut edge differently, and the sides would not meet.
+    for (std::uint8_t m : *seam) {
+      if (m != 0) {
+        return Status::InvalidInput(
+            "seam marks need a chart type with p = 1 on boundaries, not "
+            "the fully complex one");
+      }
+    }
+  }
   std::vector<SeamMode> modes(static_cast<std::size_t>(topology.num_vertices()), SeamMode::kNone);
   for (Index v = 0; seam && v < topology.num_vertices(); ++v) {
     if (static_cast<std::size_t>(v) >= seam->size() || (*seam)[static_cast<std::size_t>(v)] == 0)
@@ -134,6 +151,22 @@ Status BuildControlSurface(const PolygonMesh& mesh, const DomainOptions& options
   Status s = ValidatePolygonMesh(mesh);
   if (s.ok()) s = CheckCoordinateRange(mesh);
   if (!s.ok()) return s;
+  if (seam) {
+    // The marks name the mesh's vertices; a quadrangulation would add unmarked vertices on the
+    // cut.
+    if (seam->size() != mesh.positions.size()) {
+      return Status::InvalidInput(mesh.source_name + ": " + std::to_string(seam->size()) +
+                                  " seam marks for " + std::to_string(mesh.positions.size()) +
+                                  " vertices");
+    }
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+      if (mesh.face_size(f) != 4) {
+        return Status::InvalidInput(mesh.source_name + ": a mesh with seam marks must be all " +
+                                    "quads; " + mesh.FaceName(f) + " has " +
+                                    std::to_string(mesh.face_size(f)) + " sides");
+      }
+    }
+  }
   ControlSurface cs;
   s = Quadrangulate(mesh, &cs.control);
   if (!s.ok()) return s;

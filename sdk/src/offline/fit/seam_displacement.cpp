@@ -82,6 +82,12 @@ Status ZeroDisplacementOnSeams(const ManifoldDomain& domain, const std::vector<s
     return Status::InvalidInput("seam displacement: " + std::to_string(nc) + " charts for " +
                                 std::to_string(domain.num_vertices()) + " vertices");
   }
+  if (seam.size() != nc) {
+    return Status::InvalidInput("seam displacement: " + std::to_string(seam.size()) +
+                                " seam marks for " + std::to_string(nc) + " charts");
+  }
+  Status valid = ValidateBsplineDisplacementData(*data, static_cast<std::int64_t>(nc));
+  if (!valid.ok()) return Status::InvalidInput("seam displacement: " + valid.message());
   BsplineDisplacementData out;
   out.form = data->form;
   out.half_extent = data->half_extent;
@@ -114,7 +120,7 @@ Status ZeroDisplacementOnSeams(const ManifoldDomain& domain, const std::vector<s
         LineThroughZero(level.m, &first, w);
         const int last = level.m + 2;  // the last node column (row)
         // The rays' node columns (rows): x >= 0 reaches columns first .. last, x <= 0 columns
-        // 0 .. first + 3.
+        // 0 .. first + 2 (first + 3 at level 0, where the line is inside a cell).
         if (kind == VertexKind::kCrease) {
           Project(&level, true, 0, last, first, w);
         } else {
@@ -124,8 +130,10 @@ Status ZeroDisplacementOnSeams(const ManifoldDomain& domain, const std::vector<s
           double scale = 0.0;
           for (int it = 0; it < 100; ++it) {
             const double a = Project(&level, true, first, last, first, w);
+            // y <= 0 reaches the rows up to the last one whose basis is non-zero at 0.
+            const int below = std::min(first + (w[3] != 0.0 ? 3 : 2), last);
             const double b = up ? Project(&level, false, first, last, first, w)
-                                : Project(&level, false, 0, std::min(first + 3, last), first, w);
+                                : Project(&level, false, 0, below, first, w);
             if (it == 0) scale = std::max(a, b);
             if (!(std::max(a, b) > 1e-14 * scale)) break;
           }

@@ -186,8 +186,18 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     Status s = BuildControlMesh(*input.mesh, cm, &fitted.control_mesh, &rep.control_mesh);
     if (!s.ok()) return s;
     if (options.cut_control_mesh) {
+      if (options.displacement.method != DisplacementMethod::kAdaptive) {
+        return Status::InvalidInput(where +
+                                    ": a control mesh cut open needs the adaptive displacement "
+                                    "(its levels are made to vanish on the cut)");
+      }
       s = options.cut_control_mesh(&fitted.control_mesh, &seam);
       if (!s.ok()) return s.WithContext(where);
+      if (!seam.empty() && seam.size() != fitted.control_mesh.positions.size()) {
+        return Status::Internal(
+            where + ": the cut gave " + std::to_string(seam.size()) + " seam marks for " +
+            std::to_string(fitted.control_mesh.positions.size()) + " control vertices");
+      }
     }
     if (options.place_control_vertices) {
       const std::vector<Index> faces = fitted.control_mesh.face_vertices;
@@ -240,8 +250,10 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
   // given control mesh is used as is.
   // The input's own quads (QuadRemeshOptions::input_quads_max_ratio) are the data's vertices,
   // which the domain surface interpolates: they stay.
+  // A mesh cut open (FitOptions::cut_control_mesh) neither: the fit and the boundary cover move
+  // each copy of a cut vertex on its own and would open the cut.
   if (!input.control && options.control_fit_iterations > 0 &&
-      !rep.control_mesh.quality.input_quads &&
+      !rep.control_mesh.quality.input_quads && seam.empty() &&
       static_cast<double>(fit_points.size()) >=
           options.control_fit_min_points_per_vertex * domain.num_vertices()) {
     progress("control-vertex fit", w_control_mesh);

@@ -34,15 +34,17 @@ std::vector<VertexKind> ClassifyVertices(const MeshTopology& topology,
 /// a seam operator (ComputeSeamPatchFitOperator), so the two sides of the cut meet exactly: a
 /// 1 (inside a chain) whose two boundary edges are more than 150 degrees apart a half-disk
 /// chart (kCrease) with kSmooth, any other a corner chart (convex where its corner angles sum
-/// to less than pi, else concave) with kCorner. A non-zero entry on an interior vertex is
-/// InvalidInput.
+/// to less than pi, else concave) with kCorner. InvalidInput for a non-zero entry on an interior
+/// vertex, marks of another count than the vertices, or marks with ChartType::kFullyComplex
+/// (p = q on boundaries: the sides of a cut would not meet).
 Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>& positions,
                            const DomainOptions& options, std::unique_ptr<ManifoldDomain>* out,
                            const std::vector<std::uint8_t>* seam = nullptr);
 
 /// The whole chain: validate, quadrangulate, build topology and domain, fit patches.
-/// Errors name the mesh's source, element and line. `seam`: as BuildManifoldDomain's, indexed
-/// by the mesh's vertices (the quadrangulation's new vertices lie on no seam).
+/// Errors name the mesh's source, element and line. `seam`: as BuildManifoldDomain's, one per
+/// vertex of `mesh`, which must then be all quads (a quadrangulation would put unmarked
+/// vertices on the cut): InvalidInput otherwise.
 Status BuildControlSurface(const PolygonMesh& mesh, const DomainOptions& options,
                            ControlSurface* out, const std::vector<std::uint8_t>* seam = nullptr);
 

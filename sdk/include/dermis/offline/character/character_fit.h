@@ -143,7 +143,8 @@ struct CharacterFitOptions {
   /// (the seam patch operators, ComputeSeamPatchFitOperator), so the part keeps its hard edges
   /// as its renderer draws them instead of rounding them with a lip beside each
   /// (docs/characters.md, "Hard edges cut open"). Support rows (crease_support) are not
-  /// placed then: there is no rounding for them to narrow.
+  /// placed then: there is no rounding for them to narrow. Only with the adaptive displacement
+  /// (the default): with fit.displacement's MBA the creases stay closed, with support rows.
   bool cut_creases = true;
   /// A part modelled in quads and exported as triangles gets its own quads back as its control
   /// mesh (QuadRemeshOptions::input_quads_max_ratio): where its triangles pair back into quads

@@ -26,7 +26,9 @@ namespace dermis {
 /// share the nodes round the origin and are met by alternating projections. Nodes a sparse
 /// level lacks are added where the change makes them non-zero; `nodes_added` (optional)
 /// counts them. The coefficients are stored as float, so the displacement on a ray is zero to
-/// float rounding. InvalidInput for data that is not additive or does not match the domain.
+/// float rounding. InvalidInput for data that is not additive, invalid
+/// (ValidateBsplineDisplacementData) or not of the domain's chart count, or seam marks of
+/// another count.
 Status ZeroDisplacementOnSeams(const ManifoldDomain& domain, const std::vector<std::uint8_t>& seam,
                                BsplineDisplacementData* data, std::int64_t* nodes_added = nullptr);
 

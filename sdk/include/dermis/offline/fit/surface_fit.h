@@ -90,10 +90,15 @@ struct FitOptions {
   /// report's control-mesh quality is measured before the moves.
   std::function<void(PolygonMesh* control)> place_control_vertices;
   /// Called on a control mesh built from the data before place_control_vertices; may change
-  /// its faces and add vertices, and fills `seam` with a SeamMode per vertex
-  /// (dermis/offline/build/patch_fit_operator.h; empty: none) for the domain builder. Empty:
-  /// none. FitCharacter sets it on a part whose control mesh keeps hard creases, cutting the
-  /// mesh open along them (CharacterFitOptions::cut_creases, CutAlongCreases()).
+  /// its faces (all quads) and add vertices, and fills `seam` with CutAlongCreases()'s marks
+  /// (one per vertex: 0 off the cut, 1 inside a crease chain, 2 at a junction or the
+  /// boundary; empty: none), which BuildControlSurface() turns into seam charts and operators
+  /// and ZeroDisplacementOnSeams() into displacements vanishing on the cut. Empty: none.
+  /// FitCharacter sets it on a part whose control mesh keeps hard creases, cutting the mesh open
+  /// along them (CharacterFitOptions::cut_creases). With a cut, the control-vertex fit and the
+  /// boundary cover do not run (they would move the copies of a cut vertex apart), the
+  /// displacement must be adaptive (InvalidInput otherwise), and place_control_vertices must
+  /// move coincident copies alike.
   std::function<Status(PolygonMesh* control, std::vector<std::uint8_t>* seam)> cut_control_mesh;
 };
 
