@@ -36,9 +36,9 @@ struct CreaseCutResult {
 /// sides one chart cannot close) is left closed, edge by edge back to a junction or the
 /// boundary. Each vertex on a cut edge gets one copy per fan of its faces between cut edges
 /// (the first keeps its index, the others are appended in half-edge order, at the same
-/// position); faces keep their order and orientation. Deterministic. InvalidInput for a mesh the topology refuses (non-manifold,
-/// inconsistent orientation) or a negative or non-finite tolerance; `chains` must have been
-/// built on the surface `control` lies on.
+/// position); faces keep their order and orientation. Deterministic. InvalidInput for a mesh the
+/// topology refuses (non-manifold, inconsistent orientation) or a negative or non-finite tolerance;
+/// `chains` must have been built on the surface `control` lies on.
 Status CutAlongCreases(const CreaseChains& chains, double tolerance, PolygonMesh* control,
                        CreaseCutResult* result);
 
