@@ -10,7 +10,7 @@
 #include <string>
 
 #include "dermis/core/mesh_topology.h"
-#include "dermis/offline/build/patch_fit_operator.h"
+#include "union_find.h"
 
 namespace dermis {
 
@@ -85,20 +85,9 @@ Status CutAlongCreases(const CreaseChains& chains, double tolerance, PolygonMesh
   // Corners of each face around a vertex (half-edges by origin) joined across the edges not
   // cut: union-find over half-edges.
   const Index nh = topo.num_halfedges();
-  std::vector<Index> parent(static_cast<std::size_t>(nh));
-  std::iota(parent.begin(), parent.end(), Index{0});
-  auto find = [&](Index h) {
-    while (parent[static_cast<std::size_t>(h)] != h) {
-      parent[static_cast<std::size_t>(h)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(h)])];
-      h = parent[static_cast<std::size_t>(h)];
-    }
-    return h;
-  };
-  auto unite = [&](Index a, Index b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-  };
+  UnionFind corners(nh);
+  auto find = [&](Index h) { return corners.Find(h); };
+  auto unite = [&](Index a, Index b) { corners.Unite(a, b); };
   for (Index h = 0; h < nh; ++h) {
     const Index t = topo.twin(h);
     if (t == kInvalidIndex || t < h || cut[static_cast<std::size_t>(topo.halfedge_edge(h))])

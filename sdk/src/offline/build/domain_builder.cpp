@@ -18,6 +18,18 @@ double Angle(Vec3 a, Vec3 b) {
   const double d = glm::dot(a, b);
   return std::atan2(c, d);
 }
+// Sum of the corner angles of boundary vertex v's ring faces at rest (pi on a flat boundary).
+double CornerAngleSum(const MeshTopology& topo, const std::vector<Vec3>& positions, Index v) {
+  double sum = 0.0;
+  for (int i = 0; i < topo.valence(v); ++i) {
+    const RingCorner rc = topo.ring(v, i);
+    const Index n = topo.face_vertex(rc.face, (rc.corner + 1) % topo.face_size(rc.face));
+    const Index p = topo.face_vertex(
+        rc.face, (rc.corner + topo.face_size(rc.face) - 1) % topo.face_size(rc.face));
+    sum += Angle(positions[n] - positions[v], positions[p] - positions[v]);
+  }
+  return sum;
+}
 }  // namespace
 
 std::vector<VertexKind> ClassifyVertices(const MeshTopology& topo,
@@ -30,14 +42,7 @@ std::vector<VertexKind> ClassifyVertices(const MeshTopology& topo,
       kinds[v] = VertexKind::kConvexCorner;
       continue;
     }
-    double sum = 0.0;
-    for (int i = 0; i < k; ++i) {
-      const RingCorner rc = topo.ring(v, i);
-      const Index n = topo.face_vertex(rc.face, (rc.corner + 1) % topo.face_size(rc.face));
-      const Index p = topo.face_vertex(
-          rc.face, (rc.corner + topo.face_size(rc.face) - 1) % topo.face_size(rc.face));
-      sum += Angle(positions[n] - positions[v], positions[p] - positions[v]);
-    }
+    const double sum = CornerAngleSum(topo, positions, v);
     if (sum < 0.75 * kPi) {
       kinds[v] = VertexKind::kConvexCorner;
     } else if (sum > 1.25 * kPi) {
@@ -87,8 +92,7 @@ Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>
   }
   std::vector<SeamMode> modes(static_cast<std::size_t>(topology.num_vertices()), SeamMode::kNone);
   for (Index v = 0; seam && v < topology.num_vertices(); ++v) {
-    if (static_cast<std::size_t>(v) >= seam->size() || (*seam)[static_cast<std::size_t>(v)] == 0)
-      continue;
+    if ((*seam)[static_cast<std::size_t>(v)] == 0) continue;
     if (!topology.is_boundary_vertex(v)) {
       return Status::InvalidInput("vertex " + std::to_string(v) +
                                   " is on a seam but not on a boundary");
@@ -103,23 +107,17 @@ Status BuildManifoldDomain(const MeshTopology& topology, const std::vector<Vec3>
       kind = VertexKind::kCrease;
       modes[static_cast<std::size_t>(v)] = SeamMode::kSmooth;
     } else {
-      double sum = 0.0;
-      for (int i = 0; i < k; ++i) {
-        const RingCorner rc = topology.ring(v, i);
-        sum += Angle(positions[topology.face_vertex(rc.face, (rc.corner + 1) % 4)] - positions[v],
-                     positions[topology.face_vertex(rc.face, (rc.corner + 3) % 4)] - positions[v]);
-      }
-      kind = sum < kPi ? VertexKind::kConvexCorner : VertexKind::kConcaveCorner;
+      kind = CornerAngleSum(topology, positions, v) < kPi ? VertexKind::kConvexCorner
+                                                          : VertexKind::kConcaveCorner;
       modes[static_cast<std::size_t>(v)] = SeamMode::kCorner;
     }
   }
-  auto seam_of = [&](Index v) { return modes[static_cast<std::size_t>(v)]; };
 
   std::map<std::array<int, 3>, Index> cache;
   for (Index v = 0; v < topology.num_vertices(); ++v) {
     const int k = topology.valence(v);
     if (k == 0) return Status::InvalidInput("vertex " + std::to_string(v) + " is used by no face");
-    const SeamMode mode = seam_of(v);
+    const SeamMode mode = modes[static_cast<std::size_t>(v)];
     const std::array<int, 3> key = {k, static_cast<int>(data.vertex_kind[v]),
                                     static_cast<int>(mode)};
     auto it = cache.find(key);

@@ -19,6 +19,7 @@
 #include "dermis/offline/build/reference_surface.h"
 #include "dermis/offline/geometry/quadrangulate.h"
 #include "dermis/offline/geometry/triangle_distance.h"
+#include "union_find.h"
 
 namespace dermis {
 namespace {
@@ -139,20 +140,9 @@ bool InsertEdgeLoops(const ReferenceSurface& ref, const SizingField& sizing,
     if (topo.face_size(f) != 3 && topo.face_size(f) != 4) return false;
   }
   const std::vector<Vec3>& x = mesh->positions;
-  std::vector<Index> parent(static_cast<std::size_t>(ne));
-  std::iota(parent.begin(), parent.end(), Index{0});
-  auto find = [&](Index e) {
-    while (parent[static_cast<std::size_t>(e)] != e) {
-      parent[static_cast<std::size_t>(e)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(e)])];
-      e = parent[static_cast<std::size_t>(e)];
-    }
-    return e;
-  };
-  auto unite = [&](Index a, Index b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-  };
+  UnionFind classes(ne);
+  auto find = [&](Index e) { return classes.Find(e); };
+  auto unite = [&](Index a, Index b) { classes.Unite(a, b); };
   for (Index f = 0; f < nf; ++f) {
     const Index h = topo.face_offset(f);
     if (topo.face_size(f) == 4) {
