@@ -158,6 +158,15 @@ expect_run(2 "--input-quads: must be 0 or in \\[1, 1e6\\]" ${DERMIS} fit ${WORK}
            -o ${WORK}/bad_refit.dsurf --input-quads 0.5)
 expect_run(2 "--creases-closed applies to a character" ${DERMIS} fit ${WORK}/dense_torus.obj
            -o ${WORK}/bad_refit.dsurf --creases-closed)
+# --shading-shape: 'auto' (the default) or a factor in [0, 1]; anything else is a usage error.
+string(FIND "${fit_help}" "--shading-shape TEXT=auto " at)
+if(at LESS 0)
+  message(FATAL_ERROR "dermis fit --help does not give --shading-shape's default as auto")
+endif()
+foreach(bad 1.5 -0.5 round 0.5x)
+  expect_run(2 "--shading-shape: 'auto' or a number in \\[0, 1\\], not '${bad}'" ${DERMIS} fit
+             ${WORK}/dense_torus.obj -o ${WORK}/bad_refit.dsurf --shading-shape=${bad})
+endforeach()
 # --refit=false asks for nothing a surface lacks (the input is missing: exit 1, not 2).
 expect_run(1 "missing\\.obj" ${DERMIS} fit ${WORK}/missing.obj -o ${WORK}/bad_refit.dsurf
            --refit=false)
@@ -312,6 +321,14 @@ foreach(key parts_fitted parts_unfitted vertices_bound e1_mean e1_max unfitted)
   endif()
 endforeach()
 expect_help_defaults("${report}" character)
+# The shading surface: chosen per part by default, and the report says which.
+foreach(key "\"shading-shape\": \"auto\"" "\"shading_shape\": " "\"shading_normal_deviation_deg\": "
+            "\"flat_normal_deviation_deg\": ")
+  string(FIND "${report}" "${key}" at)
+  if(at LESS 0)
+    message(FATAL_ERROR "skin.json has no ${key}:\n${report}")
+  endif()
+endforeach()
 # A character's report leaves out the options a character fit does not take (refused on a
 # character, above) and keeps the control-vertex fit's, which --control-fit can turn on.
 foreach(key control-vertices holdout)

@@ -3,6 +3,7 @@
 // report of the fit's errors and timings (paper section 4, Table 1).
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -55,7 +56,7 @@ struct FitArgs {
   int threads = 0;
   bool quiet = false;
   double control_ratio = CharacterFitOptions{}.vertex_ratio;
-  double shading_shape = CharacterFitOptions{}.shading_shape;
+  std::string shading_shape = "auto";  ///< "auto" or a shape factor in [0, 1].
   double shading_max_move = CharacterFitOptions{}.shading_max_move;
   double crease_smoothing = CharacterFitOptions{}.crease_smoothing;
   double vertex_weight = CharacterFitOptions{}.vertex_weight;
@@ -117,6 +118,7 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
       m["crease_cut_edges"] = c.crease_cut_edges;
       m["crease_cut_vertices"] = c.crease_cut_vertices;
     }
+
     if (q.grown_target > 0) {
       m["grown_target"] = q.grown_target;
       m["deviation_edge_lengths"] = q.deviation;
@@ -254,7 +256,11 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   // A character's control meshes follow --control-ratio, and every vertex is fitted.
   for (const char* key : {"control-vertices", "holdout"}) options_json.erase(key);
   options_json["control-ratio"] = options.vertex_ratio;
-  options_json["shading-shape"] = options.shading_shape;
+  if (options.shading_shape < 0.0) {
+    options_json["shading-shape"] = "auto";
+  } else {
+    options_json["shading-shape"] = options.shading_shape;
+  }
   options_json["shading-max-move"] = options.shading_max_move;
   options_json["crease-smoothing"] = options.crease_smoothing;
   options_json["vertex-weight"] = options.vertex_weight;
@@ -284,7 +290,12 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   Json meshes = Json::array();
   for (std::size_t p = 0; p < r.part_control_meshes.size(); ++p) {
     nlohmann::ordered_json m = ControlMeshJson(r.part_control_meshes[p]);
-    m["control_fit_rounds"] = r.part_control_meshes[p].control_fit_rounds;
+    const ControlMeshInfo& cm = r.part_control_meshes[p];
+    m["control_fit_rounds"] = cm.control_fit_rounds;
+    // The shading surface the part followed (CharacterFitOptions::shading_shape).
+    m["shading_shape"] = cm.shading_shape;
+    m["shading_normal_deviation_deg"] = cm.shading_deviation_deg;
+    m["flat_normal_deviation_deg"] = cm.flat_deviation_deg;
     const std::string note = p < r.part_notes.size() ? r.part_notes[p] : std::string();
     m["note"] = note.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(note);
     meshes.push_back(m);
@@ -318,7 +329,7 @@ int RunFitCharacter(const FitArgs& a) {
   }
   CharacterFitOptions options;
   options.vertex_ratio = a.control_ratio;
-  options.shading_shape = a.shading_shape;
+  options.shading_shape = a.shading_shape == "auto" ? -1.0 : std::stod(a.shading_shape);
   options.shading_max_move = a.shading_max_move;
   options.crease_smoothing = a.crease_smoothing;
   options.vertex_weight = a.vertex_weight;
@@ -613,9 +624,19 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--shading-shape", args->shading_shape,
                   "Characters: the surface the fit follows between the source's vertices is "
                   "the Phong tessellation of its shading normals with this shape factor (0: "
-                  "the flat triangles): the samples and the control vertices lie on it; hard "
-                  "edges and flat-shaded triangles stay flat (docs/characters.md)")
-      ->check(CLI::Range(0.0, 1.0))
+                  "the flat triangles; auto: per part, the one of 0, 0.25, 0.5 and 0.75 whose "
+                  "surface's normals come closest to the shading normals): the samples and the "
+                  "control vertices lie on it; hard edges and flat-shaded triangles stay flat "
+                  "(docs/characters.md)")
+      ->check([](const std::string& v) -> std::string {
+        if (v == "auto") return "";
+        char* end = nullptr;
+        const double x = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != '\0' || !(x >= 0.0 && x <= 1.0)) {
+          return "'auto' or a number in [0, 1], not '" + v + "'";
+        }
+        return "";
+      })
       ->capture_default_str();
   cmd->add_option("--shading-max-move", args->shading_max_move,
                   "Characters: the most that surface departs from the flat triangles at one "

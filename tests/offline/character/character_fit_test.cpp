@@ -654,6 +654,90 @@ TEST_CASE("character: a smooth-shaded tube follows its shading surface") {
   CHECK(flat_shaded == Approx(facets).epsilon(0.05));
 }
 
+/// A bar of square cross-section 0.4 across, 3 long along x, bent by `bend` radians about y
+/// at its middle, 3 rows of quads per half; shaded as a box-modelled limb is: each side smooth
+/// across the bend (the bend's vertices get the mean of the two halves' normals, the rest
+/// their side's), hard along the bar's long edges (each side its own vertices there).
+Asset BentBar(double bend) {
+  AssetPrimitive prim;
+  const double half = 1.5, r = 0.2;
+  const double ys[4] = {-r, r, r, -r}, zs[4] = {-r, -r, r, r};
+  const int rows = 3;
+  // Rings 0 to 2 * rows along the bar; the second half turns about y at x = half.
+  auto point = [&](int ring, int c) {
+    const double x = half * ring / rows;
+    if (ring <= rows) return glm::dvec3(x, ys[c], zs[c]);
+    const double along = x - half, ca = std::cos(bend), sa = std::sin(bend);
+    return glm::dvec3(half, ys[c], 0.0) + along * glm::dvec3(ca, 0.0, -sa) +
+           zs[c] * glm::dvec3(sa, 0.0, ca);
+  };
+  for (int side = 0; side < 4; ++side) {
+    const int c0 = side, c1 = (side + 1) % 4;
+    auto normal_of = [&](int ring) {  // the side's normal on the quad from ring to ring + 1
+      const glm::dvec3 a = point(ring, c0), b = point(ring + 1, c0), c = point(ring + 1, c1);
+      return glm::normalize(glm::cross(b - a, c - a));
+    };
+    const glm::dvec3 first = normal_of(0), second = normal_of(rows);
+    const glm::dvec3 mid = glm::normalize(first + second);
+    auto normal_at = [&](int ring) { return ring < rows ? first : ring > rows ? second : mid; };
+    for (int ring = 0; ring < 2 * rows; ++ring) {
+      const glm::dvec3 q[4] = {point(ring, c0), point(ring + 1, c0), point(ring + 1, c1),
+                               point(ring, c1)};
+      const int ring_of[4] = {ring, ring + 1, ring + 1, ring};
+      for (int c : {0, 1, 2, 0, 2, 3}) {
+        prim.indices.push_back(static_cast<std::uint32_t>(prim.positions.size()));
+        prim.positions.push_back(glm::vec3(q[c]));
+        prim.normals.push_back(glm::vec3(normal_at(ring_of[c])));
+      }
+    }
+  }
+  return SinglePrimitiveAsset(prim, "bent_bar", "bar");
+}
+
+TEST_CASE("character: a part follows its shading surface only where that follows the normals") {
+  // By default (shading_shape < 0) a part takes, of 0, 0.25, 0.5 and 0.75, the shape whose
+  // surface's normals come closest to its shading normals. A round tube's normals ask for
+  // Phong's rounding; a bar bent by 40 degrees and shaded smooth across the bend has normals
+  // that lean along flat sides, which no shape follows better than the flat sides; a tube
+  // shaded flat has nothing to follow.
+  auto report = [](const Asset& asset, double max_move) {
+    CharacterFitOptions options;
+    options.fit.threads = 2;
+    options.shading_max_move = max_move;
+    Character ch;
+    CharacterFitReport r;
+    const Status s = FitCharacter(asset, options, &ch, &r);
+    INFO(s.message());
+    REQUIRE(s.ok());
+    REQUIRE(r.part_control_meshes.size() == 1u);
+    return r.part_control_meshes[0];
+  };
+  // Uncapped: the tube is 4.1 across its diagonal, and the default cap (0.25 % of that) is
+  // far below the 0.068 Phong moves a side's middle (see the smooth-shaded tube's test).
+  const double cap = CharacterFitOptions{}.shading_max_move;
+  const ControlMeshInfo round = report(LowPolyTube(8, true), 0.0);
+  const ControlMeshInfo capped = report(LowPolyTube(8, true), cap);
+  INFO("round tube: shape " << round.shading_shape << ", " << round.shading_deviation_deg
+                            << " deg against " << round.flat_deviation_deg << " flat; capped "
+                            << capped.shading_shape << ", " << capped.shading_deviation_deg);
+  CHECK(round.shading_shape >= 0.5);
+  CHECK(round.shading_deviation_deg < 0.6 * round.flat_deviation_deg);
+  CHECK(capped.shading_shape > 0.0);
+  CHECK(capped.shading_deviation_deg < capped.flat_deviation_deg);
+  // The flat sides' interpolated normals are 11.5 degrees from theirs on average (the
+  // shading surface test derives it).
+  CHECK(round.flat_deviation_deg == Approx(11.55).epsilon(0.01));
+  const ControlMeshInfo bar = report(BentBar(40.0 * 3.14159265358979323846 / 180.0), 0.0);
+  INFO("bent bar: shape " << bar.shading_shape << ", " << bar.shading_deviation_deg
+                          << " deg against " << bar.flat_deviation_deg << " flat");
+  CHECK(bar.shading_shape == 0.0);
+  CHECK(bar.flat_deviation_deg > 1.0);
+  CHECK(bar.shading_deviation_deg == bar.flat_deviation_deg);
+  const ControlMeshInfo flat = report(LowPolyTube(8, false), cap);
+  CHECK(flat.shading_shape == 0.0);
+  CHECK(flat.flat_deviation_deg < 1e-5);
+}
+
 TEST_CASE("character: edges shaded smooth are not creases but hard edges are") {
   // The octagonal tube's edges turn by 45 degrees, above the crease angle (0.5 rad). Shaded
   // smooth they are how few triangles draw a round limb: no crease, and the part takes the

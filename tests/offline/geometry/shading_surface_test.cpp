@@ -215,3 +215,103 @@ TEST_CASE("shading surface: max_move caps each edge's bulge, the same from both 
     CHECK(glm::length(p0 - chord_mid) <= 0.02 * (1.0 + 1e-12));
   }
 }
+
+namespace {
+
+/// A bar of square cross-section (side 2) along x from 0 to 2 * `half`, bent by `bend`
+/// radians about y at x = `half`: two segments of one quad per side, each quad split into two
+/// triangles. Shaded as a box-modelled limb is: each side is smooth across the bend (its
+/// vertices at the bend get the mean of the two faces' normals) and hard along the bar (the
+/// long edges); the rings at the ends are open.
+Tube MakeBentBar(double half, double bend) {
+  Tube t;
+  // Ring r (0, 1, 2) at the start, the bend and the end; corner c of the square (y, z).
+  const double ys[4] = {-1.0, 1.0, 1.0, -1.0}, zs[4] = {-1.0, -1.0, 1.0, 1.0};
+  auto point = [&](int r, int c) {
+    if (r < 2) return Vec3(r * half, ys[c], zs[c]);
+    // The second segment turns about y through the bend: its axis (cos, 0, -sin).
+    const double ca = std::cos(bend), sa = std::sin(bend);
+    const Vec3 base(half, ys[c], zs[c]);
+    return base + half * Vec3(ca, 0.0, -sa) + zs[c] * Vec3(sa, 0.0, ca - 1.0);
+  };
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) t.mesh.positions.push_back(point(r, c));
+  }
+  auto id = [](int r, int c) { return static_cast<Index>(4 * r + (c % 4)); };
+  auto face_normal = [&](Index a, Index b, Index c) {
+    const Vec3 &pa = t.mesh.positions[static_cast<std::size_t>(a)],
+               &pb = t.mesh.positions[static_cast<std::size_t>(b)],
+               &pc = t.mesh.positions[static_cast<std::size_t>(c)];
+    return glm::normalize(glm::cross(pb - pa, pc - pa));
+  };
+  for (int side = 0; side < 4; ++side) {
+    Vec3 n[2];
+    Index q[2][4];
+    for (int s = 0; s < 2; ++s) {
+      q[s][0] = id(s, side);
+      q[s][1] = id(s + 1, side);
+      q[s][2] = id(s + 1, side + 1);
+      q[s][3] = id(s, side + 1);
+      n[s] = face_normal(q[s][0], q[s][1], q[s][2]);
+    }
+    const Vec3 mid = glm::normalize(n[0] + n[1]);
+    for (int s = 0; s < 2; ++s) {
+      for (const auto& tri : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}}) {
+        t.mesh.AddFace({q[s][tri[0]], q[s][tri[1]], q[s][tri[2]]});
+        // Corners 1 and 2 of the first segment's quad and 0 and 3 of the second's are at the
+        // bend.
+        for (int c : tri) {
+          const bool at_bend = s == 0 ? (c == 1 || c == 2) : (c == 0 || c == 3);
+          t.normals.push_back(at_bend ? mid : n[s]);
+        }
+      }
+    }
+  }
+  return t;
+}
+
+double Deviation(const Tube& t, double shape) {
+  ShadingSurface s;
+  s.Build(t.mesh, t.normals, shape, 0.0);
+  return s.NormalDeviation();
+}
+
+}  // namespace
+
+TEST_CASE("shading surface: how far its normals are from the shading normals", "[shading]") {
+  // The flat sides of a smooth-shaded octagonal tube: across a side the interpolated normal
+  // turns linearly from one radial direction to the next, at atan(|1 - 2t| tan(pi/8)) from
+  // the side's normal (t across the side; the normals are the same along the tube). Its mean
+  // over t is atan(k) - ln(1 + k^2) / (2k), k = tan(pi/8): 0.20155 rad. 16 points per
+  // triangle give it to about 1e-3 (the kink at the side's middle).
+  const Tube round = MakeTube(8, 2, true);
+  const double k = std::tan(kPi / 8);
+  const double exact = std::atan(k) - std::log(1.0 + k * k) / (2.0 * k);
+  CHECK(Deviation(round, 0.0) == Approx(exact).epsilon(5e-3));
+  // Phong's surface follows them: half as far at shape 0.5.
+  CHECK(Deviation(round, 0.5) < 0.55 * Deviation(round, 0.0));
+  // Shaded flat, the facets' normals are the shading normals at any shape (to acos's
+  // precision near 1).
+  CHECK(Deviation(MakeTube(8, 2, false), 0.5) < 1e-7);
+  // A bar bent by 40 degrees, smooth across the bend only: along the two sides that turn, the
+  // interpolated normal leans from 0 at the ends to 20 degrees at the bend, about 10 on
+  // average, and the two sides the bend turns within do not lean: bend / 8 over the bar (its
+  // outer side is a little longer). No surface with straight long edges through those corners
+  // follows such normals better than the flat sides; Phong's parabolas along the quads'
+  // diagonals only add to it.
+  const double bend = 40.0 * kPi / 180.0;
+  const Tube bar = MakeBentBar(3.0, bend);
+  ShadingSurface s;
+  s.Build(bar.mesh, bar.normals, 0.5, 0.0);
+  REQUIRE(s.curved());
+  const double flat = Deviation(bar, 0.0);
+  CHECK(flat == Approx(bend / 8.0).epsilon(0.1));
+  for (double shape : {0.25, 0.5, 0.75}) {
+    INFO("shape " << shape);
+    CHECK(Deviation(bar, shape) > flat);
+  }
+  // No normals at all: nothing to measure.
+  Tube none = round;
+  none.normals.clear();
+  CHECK(Deviation(none, 0.5) == 0.0);
+}

@@ -291,9 +291,29 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // The part follows its shading surface (CharacterFitOptions::shading_shape), and the edges
   // the source shades smooth are neither creases of the control mesh nor sharp edges of the
   // samples (creases_follow_shading).
+  // A negative shape factor (the default) takes, of 0 (the flat triangles), 0.25, 0.5 and
+  // 0.75, the one whose surface's own normals come closest to the shading normals
+  // (ShadingSurface::NormalDeviation; the smaller on a tie, so a part without normals stays
+  // flat).
+  const double max_move = options.shading_max_move * Diagonal(dense.positions);
+  double shape = options.shading_shape;
   ShadingSurface shading;
-  shading.Build(dense, corner_normals, options.shading_shape,
-                options.shading_max_move * Diagonal(dense.positions));
+  shading.Build(dense, corner_normals, 0.0, max_move);
+  const double flat_deviation = shading.NormalDeviation();
+  double deviation = flat_deviation;
+  if (shape < 0.0) {
+    shape = 0.0;
+    for (const double trial : {0.25, 0.5, 0.75}) {
+      shading.Build(dense, corner_normals, trial, max_move);
+      const double d = shading.NormalDeviation();
+      if (d < deviation) {
+        deviation = d;
+        shape = trial;
+      }
+    }
+  }
+  shading.Build(dense, corner_normals, shape, max_move);
+  if (options.shading_shape >= 0.0) deviation = shading.NormalDeviation();
   const std::vector<std::array<std::uint32_t, 2>> no_edges;
   const std::vector<std::array<std::uint32_t, 2>>& smooth_edges =
       options.creases_follow_shading ? shading.smooth_edges() : no_edges;
@@ -505,6 +525,9 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     }
   }
   fr->control_mesh.control_fit_rounds = static_cast<int>(fr->control_fit_rounds);
+  fr->control_mesh.shading_shape = shape;
+  fr->control_mesh.shading_deviation_deg = glm::degrees(deviation);
+  fr->control_mesh.flat_deviation_deg = glm::degrees(flat_deviation);
   return std::string();
 }
 

@@ -117,4 +117,52 @@ Vec3 ShadingSurface::Point(Index f, const double w[3]) const {
   return p + shape_ * move;
 }
 
+double ShadingSurface::NormalDeviation() const {
+  // Each face split 4 x 4 into 16 triangles of equal area, one point at each one's centroid.
+  constexpr int kSplit = 4;
+  double sum = 0.0, area = 0.0;
+  for (Index f = 0; f < mesh_->num_faces(); ++f) {
+    const std::size_t fi = static_cast<std::size_t>(f);
+    if (!shaded_[fi]) continue;
+    const Index* v = &mesh_->face_vertices[mesh_->face_offsets[f]];
+    const Vec3 &x0 = mesh_->positions[v[0]], &x1 = mesh_->positions[v[1]],
+               &x2 = mesh_->positions[v[2]];
+    const double a = 0.5 * glm::length(glm::cross(x1 - x0, x2 - x0)) / (kSplit * kSplit);
+    for (int i = 0; i < kSplit; ++i) {
+      for (int j = 0; i + j < kSplit; ++j) {
+        for (int down = 0; down < 2 && i + j + down < kSplit; ++down) {
+          const double off = down ? 2.0 / 3.0 : 1.0 / 3.0;
+          const double w[3] = {(i + off) / kSplit, (j + off) / kSplit,
+                               1.0 - (i + off) / kSplit - (j + off) / kSplit};
+          // The surface's derivatives along w0 and w1 (w2 = 1 - w0 - w1): the flat part
+          // x0 - x2 and x1 - x2, and each curved edge's w_k w_l differentiated.
+          const double du[3] = {1.0, 0.0, -1.0}, dv[3] = {0.0, 1.0, -1.0};
+          Vec3 pu = x0 - x2, pv = x1 - x2;
+          if (curved_) {
+            for (std::size_t c = 0; c < 3; ++c) {
+              if (hard_[3 * fi + c]) continue;
+              const std::size_t k = (c + 1) % 3, l = (c + 2) % 3;
+              const Vec3 &xk = mesh_->positions[v[k]], &xl = mesh_->positions[v[l]];
+              const Vec3 &nk = normals_[3 * fi + k], &nl = normals_[3 * fi + l];
+              const Vec3 term = shape_ * scale_[3 * fi + c] *
+                                (glm::dot(xl - xk, nk) * nk + glm::dot(xk - xl, nl) * nl);
+              pu -= (du[k] * w[l] + w[k] * du[l]) * term;
+              pv -= (dv[k] * w[l] + w[k] * dv[l]) * term;
+            }
+          }
+          const Vec3 shading =
+              w[0] * normals_[3 * fi] + w[1] * normals_[3 * fi + 1] + w[2] * normals_[3 * fi + 2];
+          const Vec3 own = glm::cross(pu, pv);
+          const double lo = glm::length(own), ls = glm::length(shading);
+          if (!(lo > 0.0) || !(ls > 0.0)) continue;
+          const double cosine = glm::dot(own, shading) / (lo * ls);
+          sum += a * std::acos(std::max(-1.0, std::min(1.0, cosine)));
+          area += a;
+        }
+      }
+    }
+  }
+  return area > 0.0 ? sum / area : 0.0;
+}
+
 }  // namespace dermis

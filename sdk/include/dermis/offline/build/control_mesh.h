@@ -60,6 +60,14 @@ struct ControlMeshInfo {
   /// Rounds of the control-vertex fit its vertices went through (characters: the parts without
   /// hard creases, CharacterFitOptions::fit; FitReport::control_fit_rounds for a surface).
   int control_fit_rounds = 0;
+  /// Characters: the shape factor of the shading surface the part followed
+  /// (CharacterFitOptions::shading_shape, chosen per part by default; 0: the flat triangles),
+  /// and the mean angle (degrees, by area) of that surface's own normals and of the flat
+  /// triangles' from the source's shading normals (ShadingSurface::NormalDeviation; 0 for a
+  /// part without normals).
+  double shading_shape = 0.0;
+  double shading_deviation_deg = 0.0;
+  double flat_deviation_deg = 0.0;
 };
 
 /// Builds a control mesh from a polygon mesh (faces are fan-triangulated): welds vertices

@@ -92,8 +92,13 @@ struct CharacterFitOptions {
   /// differ across them), boundaries, flat-shaded triangles and primitives without normals stay
   /// straight and flat. The vertices are fitted as they are. 0.5 puts the middle of an edge
   /// whose normals turn evenly on the circle through its ends (to first order; Boubekeur and
-  /// Alexa's 0.75 bulges past it); 0: the flat triangles.
-  double shading_shape = 0.5;
+  /// Alexa's 0.75 bulges past it); 0: the flat triangles. Negative (the default): each part
+  /// takes, of 0, 0.25, 0.5 and 0.75, the shape whose surface's own normals come closest to
+  /// its shading normals (ShadingSurface::NormalDeviation; the smaller on a tie): normals
+  /// averaged across the bends of long flat facets (a box-modelled figure shaded smooth) make
+  /// Phong's surface bumpier than the facets, normals of a round limb make it rounder. The
+  /// fit report gives the shape taken (ControlMeshInfo::shading_shape).
+  double shading_shape = -1.0;
   /// The most the shading surface departs from the flat triangles at one edge (its term at the
   /// edge's midpoint), as a fraction of the part's bounding-box diagonal, a third of the 0.75 %
   /// the issue allows: long triangles whose normals lean (RiggedFigure's limbs, 14 % of its

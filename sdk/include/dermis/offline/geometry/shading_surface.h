@@ -41,6 +41,14 @@ class ShadingSurface {
   /// The point of face `f` at barycentric weights `w` (w[k] for its k-th corner, summing to 1).
   /// Build() must have been called.
   Vec3 Point(Index f, const double w[3]) const;
+  /// How far this surface's own normals are from the shading normals it was built from: the
+  /// mean angle (radians, by area, over the faces with normals; 0 where there are none)
+  /// between the surface's normal and the interpolated shading normal (Σ w_k n_k), at 16
+  /// points per face (the centroids of its 4 x 4 split). Built at shape 0 it measures the flat
+  /// triangles. Normals that describe a smooth surface (a tube shaded round) come closer on
+  /// the curved surface; normals averaged across the bends of long flat facets (a box-modelled
+  /// limb shaded smooth) do not, and Phong's parabolas over those facets only add bumps.
+  double NormalDeviation() const;
   /// Whether the surface differs from the flat triangles anywhere.
   bool curved() const { return curved_; }
   /// Edges whose term max_move scaled down.
