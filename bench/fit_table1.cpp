@@ -24,6 +24,7 @@
 //                             [--loop-segments N] (coarse edges per boundary loop, at least)
 //                             [--no-cover-boundary] (FitOptions::cover_boundary off)
 //                             [--smoothing S] [--samples S] [--crease-samples C] [--crease-angle A]
+//                             [--low-poly-crease-angle A]
 //                             [--max-turn T] [--repeat R] [--where] [--node-weight W]
 //                             [--budget COEFFICIENTS_PER_POINT]
 //                             [--level-smoothing S] (the levels' smoothing; characters' parts
@@ -221,14 +222,15 @@ struct Settings {
   int crease_rows = -1;            // -1: CharacterFitOptions' default
   int displacement_levels = -1;    // characters: displacement levels of the lod surface (-1: all)
   double crease_angle = -1.0;      // -1: CharacterFitOptions' default
-  double node_weight = -1.0;       // -1: the fit's default
-  double budget = -1.0;            // coefficients per point; -1: the fit's default, 0: none
-  double max_turn = -1.0;          // -1: CharacterFitOptions' default
-  double level_smoothing = -1.0;   // -1: the adaptive fit's default
-  double crease_smoothing = -1.0;  // -1: CharacterFitOptions' default
-  double shading_shape = -1.0;     // -1: CharacterFitOptions' default
-  double shading_max_move = -1.0;  // -1: CharacterFitOptions' default
-  double vertex_weight = -1.0;     // -1: CharacterFitOptions' default
+  double low_poly_crease_angle = -1.0;  // -1: CharacterFitOptions' default
+  double node_weight = -1.0;            // -1: the fit's default
+  double budget = -1.0;                 // coefficients per point; -1: the fit's default, 0: none
+  double max_turn = -1.0;               // -1: CharacterFitOptions' default
+  double level_smoothing = -1.0;        // -1: the adaptive fit's default
+  double crease_smoothing = -1.0;       // -1: CharacterFitOptions' default
+  double shading_shape = -1.0;          // -1: CharacterFitOptions' default
+  double shading_max_move = -1.0;       // -1: CharacterFitOptions' default
+  double vertex_weight = -1.0;          // -1: CharacterFitOptions' default
   bool Row(const char* name) const { return rows.find(name) != std::string::npos; }
 };
 
@@ -803,6 +805,7 @@ int RunCharacters(const Settings& st) {
     if (st.crease_samples >= 0.0) options.crease_samples = st.crease_samples;
     if (st.crease_rows >= 0) options.crease_rows = st.crease_rows != 0;
     if (st.crease_angle >= 0.0) options.crease_angle = st.crease_angle;
+    if (st.low_poly_crease_angle >= 0.0) options.low_poly_crease_angle = st.low_poly_crease_angle;
     if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
     if (st.no_crease_remesh) options.remesh_creases = false;
     if (st.creases_ignore_shading) options.creases_follow_shading = false;
@@ -908,14 +911,15 @@ int RunCharacters(const Settings& st) {
           "%.1f..%.1f deg; creases: %d of %d source edges kept, %d chains (%d closed), %d "
           "control crease edges; support rows: %d loops, %d vertices moved; cut open: %d edges, "
           "%d vertices added; control-vertex fit: %d rounds; shading shape %.2f (normals %.2f deg "
-          "from the shading normals, the flat triangles %.2f)%s%s%s\n",
+          "from the shading normals, the flat triangles %.2f); creases from %.1f deg%s%s%s\n",
           name, p, c.method.c_str(), c.quality.vertices, c.quality.target_vertices,
           100.0 * c.quality.valence4_share, c.quality.min_corner_angle_deg,
           c.quality.max_corner_angle_deg, c.quality.crease_edges_kept, c.quality.crease_edges,
           c.quality.crease_chains, c.quality.crease_closed_chains, c.quality.control_crease_edges,
           c.crease_support_loops, c.crease_support_vertices, c.crease_cut_edges,
           c.crease_cut_vertices, c.control_fit_rounds, c.shading_shape, c.shading_deviation_deg,
-          c.flat_deviation_deg, c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str(),
+          c.flat_deviation_deg, c.crease_angle_deg,
+          c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str(),
           c.quality.input_quads ? ("; the input's own quads (the remesh had " +
                                    std::to_string(c.quality.remesh_vertices) + " vertices)")
                                       .c_str()
@@ -992,6 +996,8 @@ int main(int argc, char** argv) {
       st.displacement_levels = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--crease-angle") == 0 && i + 1 < argc) {
       st.crease_angle = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--low-poly-crease-angle") == 0 && i + 1 < argc) {
+      st.low_poly_crease_angle = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--node-weight") == 0 && i + 1 < argc) {
       st.node_weight = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--budget") == 0 && i + 1 < argc) {

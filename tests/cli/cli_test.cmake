@@ -158,6 +158,8 @@ expect_run(2 "--input-quads: must be 0 or in \\[1, 1e6\\]" ${DERMIS} fit ${WORK}
            -o ${WORK}/bad_refit.dsurf --input-quads 0.5)
 expect_run(2 "--creases-closed applies to a character" ${DERMIS} fit ${WORK}/dense_torus.obj
            -o ${WORK}/bad_refit.dsurf --creases-closed)
+expect_run(2 "--low-poly-crease-angle applies to a character" ${DERMIS} fit
+           ${WORK}/dense_torus.obj -o ${WORK}/bad_refit.dsurf --low-poly-crease-angle 0.2)
 # --shading-shape: 'auto' (the default) or a factor in [0, 1]; anything else is a usage error.
 string(FIND "${fit_help}" "--shading-shape TEXT=auto " at)
 if(at LESS 0)

@@ -64,6 +64,7 @@ struct FitArgs {
   bool creases_closed = false;
   double crease_support = CharacterFitOptions{}.crease_support;
   double input_quads = CharacterFitOptions{}.input_quads;
+  double low_poly_crease_angle = CharacterFitOptions{}.low_poly_crease_angle;
   bool refit = false;
   // Options given on the command line that only one kind of input takes (set at parse time):
   // a fit of the other kind refuses them instead of ignoring them.
@@ -262,6 +263,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
     options_json["shading-shape"] = options.shading_shape;
   }
   options_json["shading-max-move"] = options.shading_max_move;
+  options_json["low-poly-crease-angle"] = options.low_poly_crease_angle;
   options_json["crease-smoothing"] = options.crease_smoothing;
   options_json["vertex-weight"] = options.vertex_weight;
   options_json["creases-ignore-shading"] = !options.creases_follow_shading;
@@ -296,6 +298,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
     m["shading_shape"] = cm.shading_shape;
     m["shading_normal_deviation_deg"] = cm.shading_deviation_deg;
     m["flat_normal_deviation_deg"] = cm.flat_deviation_deg;
+    m["crease_angle_deg"] = cm.crease_angle_deg;
     const std::string note = p < r.part_notes.size() ? r.part_notes[p] : std::string();
     m["note"] = note.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(note);
     meshes.push_back(m);
@@ -331,6 +334,7 @@ int RunFitCharacter(const FitArgs& a) {
   options.vertex_ratio = a.control_ratio;
   options.shading_shape = a.shading_shape == "auto" ? -1.0 : std::stod(a.shading_shape);
   options.shading_max_move = a.shading_max_move;
+  options.low_poly_crease_angle = a.low_poly_crease_angle;
   options.crease_smoothing = a.crease_smoothing;
   options.vertex_weight = a.vertex_weight;
   options.creases_follow_shading = !a.creases_ignore_shading;
@@ -638,6 +642,13 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         return "";
       })
       ->capture_default_str();
+  cmd->add_option("--low-poly-crease-angle", args->low_poly_crease_angle,
+                  "Characters: a low-poly part (its control mesh at its own resolution or "
+                  "finer) is also fitted with its hard edges from this dihedral angle on "
+                  "(radians) as creases, and that fit is kept where it is clearly closer (0: "
+                  "off; docs/characters.md)")
+      ->check(CLI::Range(0.0, 1.4999))
+      ->capture_default_str();
   cmd->add_option("--shading-max-move", args->shading_max_move,
                   "Characters: the most that surface departs from the flat triangles at one "
                   "edge, as a fraction of the part's bounding-box diagonal (0: no limit)")
@@ -704,7 +715,7 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         }
         for (const char* name :
              {"--control-ratio", "--shading-shape", "--shading-max-move", "--crease-smoothing",
-              "--vertex-weight", "--crease-support", "--input-quads"}) {
+              "--vertex-weight", "--crease-support", "--input-quads", "--low-poly-crease-angle"}) {
           if (cmd->count(name) > 0) args->character_only.push_back(name);
         }
         if (args->refit) args->character_only.push_back("--refit");  // --refit=false is fine

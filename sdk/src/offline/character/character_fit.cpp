@@ -110,6 +110,7 @@ VertexBinding ClosestBinding(const DisplacedSurface& s, const std::vector<LocalP
 /// reference surface (the remesh then falls back and keeps none either).
 struct CreaseTest {
   bool sharp = false, hard = false;
+  std::size_t hard_edges = 0;  ///< Source edges that are creases (not shaded smooth).
   std::shared_ptr<const ReferenceSurface> ref;
   std::shared_ptr<const CreaseChains> chains;
 };
@@ -124,6 +125,7 @@ CreaseTest TestCreases(const PolygonMesh& mesh, const QuadRemeshOptions& remesh)
   if (t.sharp) {
     creases->Build(*ref, remesh.crease_angle_deg, remesh.corner_turn_deg, remesh.smooth_edges);
     t.hard = !creases->edges().empty();
+    t.hard_edges = creases->edges().size();
   }
   if (t.hard) t.ref = std::move(ref), t.chains = std::move(creases);
   return t;
@@ -528,6 +530,40 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   fr->control_mesh.shading_shape = shape;
   fr->control_mesh.shading_deviation_deg = glm::degrees(deviation);
   fr->control_mesh.flat_deviation_deg = glm::degrees(flat_deviation);
+  fr->control_mesh.crease_angle_deg = options.remesh_creases ? crease_angle_deg : 0.0;
+  // A low-poly part (its control mesh at its own resolution or finer) is also fitted with its
+  // gentler hard edges as creases (CharacterFitOptions::low_poly_crease_angle), where that
+  // adds any, and keeps that fit where it is clearly closer.
+  const double low = options.low_poly_crease_angle;
+  if (low > 0.0 && low < options.crease_angle && options.remesh_creases &&
+      fo.control_vertices >= dense.num_vertices() &&
+      fo.control_method == ControlMeshMethod::kRemesh) {
+    QuadRemeshOptions test = fo.remesh;
+    test.crease_angle_deg = low * 180.0 / 3.14159265358979323846;
+    test.smooth_edges = smooth_edges;
+    if (TestCreases(dense, test).hard_edges > part_creases.hard_edges) {
+      CharacterFitOptions lo = options;
+      lo.crease_angle = low;
+      lo.low_poly_crease_angle = 0.0;
+      lo.compare_without_creases = false;
+      lo.compare_simplified = false;
+      FittedSurface alt;
+      FitReport alt_report;
+      std::string alt_note;
+      if (FitComponent(dense, corner_normals, lo, {}, &alt, &alt_report, &alt_note).empty() &&
+          alt_report.error.hausdorff < options.crease_margin * fr->error.hausdorff) {
+        char note[200];
+        std::snprintf(note, sizeof(note),
+                      "a low-poly part: its hard edges from %.3g degrees on were kept as "
+                      "creases (Hausdorff %.3g against %.3g, of the part's scale)",
+                      alt_report.control_mesh.crease_angle_deg, alt_report.error.hausdorff,
+                      fr->error.hausdorff);
+        *fitted = std::move(alt);
+        *fr = std::move(alt_report);
+        *kept_simplified = note;
+      }
+    }
+  }
   return std::string();
 }
 
@@ -635,6 +671,11 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
         (options.input_quads >= 1.0 && std::isfinite(options.input_quads)))) {
     return Status::InvalidInput("character fit: input_quads must be 0 (off) or at least 1, not " +
                                 std::to_string(options.input_quads));
+  }
+  if (!(options.low_poly_crease_angle >= 0.0 && options.low_poly_crease_angle < 1.5)) {
+    return Status::InvalidInput(
+        "character fit: low_poly_crease_angle must be in [0, 1.5) radians (0: off), not " +
+        std::to_string(options.low_poly_crease_angle));
   }
   const auto t0 = std::chrono::steady_clock::now();
   Character ch;

@@ -68,6 +68,10 @@ struct ControlMeshInfo {
   double shading_shape = 0.0;
   double shading_deviation_deg = 0.0;
   double flat_deviation_deg = 0.0;
+  /// Characters: the dihedral angle (degrees) from which the source's hard edges were creases
+  /// of this control mesh (CharacterFitOptions::crease_angle, or low_poly_crease_angle where
+  /// that fit was kept; 0 where the control mesh keeps no creases by design).
+  double crease_angle_deg = 0.0;
 };
 
 /// Builds a control mesh from a polygon mesh (faces are fan-triangulated): welds vertices
