@@ -59,6 +59,47 @@ bool Plausible(double delta, double start_delta, double reach) {
   return std::abs(delta) <= std::abs(start_delta) + reach;
 }
 
+// The fit of point p from a start in the chart of vertex v0 (z0; face1, uv1 in face
+// coordinates): the other corners' samples, then the optimisation of Eq. 5.
+void FitFrom(const ManifoldDomain& domain, const LocalPatch* patches, const std::vector<Vec3>& x,
+             const Vec3& p, const PointFitOptions& options, Index v0, Vec2 z0, Index face1,
+             Vec2 uv1, PointFit* out) {
+  PointFit& r = *out;
+  r = PointFit();
+  r.projected_face = face1;
+  r.projected_uv = uv1;
+  r.delta = SignedDistance(patches[v0], z0, p);
+  // The other corners: transition, then a few Newton steps on their own patch.
+  for (int a = 0; a < 4 && options.chart_samples; ++a) {
+    const Index va = domain.topology().face_vertex(face1, a);
+    Vec2 za = va == v0 ? z0 : domain.FaceToChart(face1, a, uv1);
+    if (va != v0) za = ProjectOntoPatch(patches[va], p, za, 3);
+    if (!InsideChart(domain, va, za)) continue;
+    r.projected[r.num_projected++] = ChartSample{va, za, SignedDistance(patches[va], za, p)};
+  }
+  r.status = PointFitStatus::kNotConverged;
+  r.face = face1;
+  r.uv = uv1;
+  if (!options.optimize &&
+      !(options.optimize_beside_boundary && domain.topology().face_touches_boundary(face1))) {
+    return;
+  }
+  const CommonDisplacementSolution s =
+      SolveCommonDisplacement(domain, patches, p, v0, z0, r.delta, options.tolerance);
+  if (!s.converged || !Plausible(s.delta, r.delta, LongestEdge(domain, x, face1))) return;
+  r.status = PointFitStatus::kOptimized;
+  r.face = s.face;
+  r.uv = s.uv;
+  r.delta = s.delta;
+  const double ub = 1.0 - domain.options().blend_lb;
+  for (int a = 0; a < 4; ++a) {
+    const Vec2 cd = FaceToCorner(a, s.uv);
+    if (cd.x >= ub || cd.y >= ub) continue;
+    r.optimized[r.num_optimized++] = ChartSample{domain.topology().face_vertex(s.face, a),
+                                                 domain.FaceToChart(s.face, a, s.uv), s.delta};
+  }
+}
+
 void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std::vector<Vec3>& x,
               const TriangleDistanceTree& tree, const Vec3& p, const PointFitOptions& options,
               PointFit* out) {
@@ -106,38 +147,34 @@ void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std
     z0 = domain.FaceToChart(s.face, c, s.uv);
     face1 = s.face, uv1 = s.uv;
   }
-  r.projected_face = face1;
-  r.projected_uv = uv1;
-  r.delta = SignedDistance(patches[v0], z0, p);
-  // The other corners: transition, then a few Newton steps on their own patch.
-  for (int a = 0; a < 4 && options.chart_samples; ++a) {
-    const Index va = domain.topology().face_vertex(face1, a);
-    Vec2 za = va == v0 ? z0 : domain.FaceToChart(face1, a, uv1);
-    if (va != v0) za = ProjectOntoPatch(patches[va], p, za, 3);
-    if (!InsideChart(domain, va, za)) continue;
-    r.projected[r.num_projected++] = ChartSample{va, za, SignedDistance(patches[va], za, p)};
+  FitFrom(domain, patches, x, p, options, v0, z0, face1, uv1, out);
+  // A root of Q(z) + delta N(z) = p can be a distant part of the surface whose normal line
+  // passes through p: the patch projection can end there, on a patch that the point's own
+  // part of the surface does not reach (measured beside the cuts of the Fox's control mesh
+  // kept along its gentle hard edges: 2 to 3 model units, where the surface passes within
+  // 1e-4). The domain surface lies near its control mesh: an optimised fit further from the
+  // point than the closest control face by more than a twentieth of that face starts again
+  // from the closest surface point searched from the control face's own parameter and from
+  // its centre, and the closer fit is kept. (A point the solve loses is placed later,
+  // PlaceLostPoints.)
+  if (r.status != PointFitStatus::kOptimized) return;
+  const double fitted = std::abs(r.delta);
+  if (!(fitted > cp.distance + 0.05 * LongestEdge(domain, x, face))) return;
+  Index best_face = kInvalidIndex;
+  Vec2 best_uv;
+  double best = fitted;
+  for (const Vec2& start : {uv0, Vec2(0.5)}) {
+    Index f2 = face;
+    Vec2 uv2 = start;
+    const double d = ClosestPointOnSurface(domain, patches, nullptr, p, &f2, &uv2);
+    if (d < best) best = d, best_face = f2, best_uv = uv2;
   }
-  r.status = PointFitStatus::kNotConverged;
-  r.face = face1;
-  r.uv = uv1;
-  if (!options.optimize &&
-      !(options.optimize_beside_boundary && domain.topology().face_touches_boundary(face1))) {
-    return;
-  }
-  const CommonDisplacementSolution s =
-      SolveCommonDisplacement(domain, patches, p, v0, z0, r.delta, options.tolerance);
-  if (!s.converged || !Plausible(s.delta, r.delta, LongestEdge(domain, x, face1))) return;
-  r.status = PointFitStatus::kOptimized;
-  r.face = s.face;
-  r.uv = s.uv;
-  r.delta = s.delta;
-  const double ub = 1.0 - domain.options().blend_lb;
-  for (int a = 0; a < 4; ++a) {
-    const Vec2 cd = FaceToCorner(a, s.uv);
-    if (cd.x >= ub || cd.y >= ub) continue;
-    r.optimized[r.num_optimized++] = ChartSample{domain.topology().face_vertex(s.face, a),
-                                                 domain.FaceToChart(s.face, a, s.uv), s.delta};
-  }
+  if (best_face == kInvalidIndex) return;
+  const int c = DominantCorner(best_uv);
+  PointFit again;
+  FitFrom(domain, patches, x, p, options, domain.topology().face_vertex(best_face, c),
+          domain.FaceToChart(best_face, c, best_uv), best_face, best_uv, &again);
+  if (again.status == PointFitStatus::kOptimized && std::abs(again.delta) < fitted) r = again;
 }
 
 }  // namespace
