@@ -325,7 +325,7 @@ endforeach()
 expect_help_defaults("${report}" character)
 # The shading surface: chosen per part by default, and the report says which.
 foreach(key "\"shading-shape\": \"auto\"" "\"shading_shape\": " "\"shading_normal_deviation_deg\": "
-            "\"flat_normal_deviation_deg\": ")
+            "\"flat_normal_deviation_deg\": " "\"low-poly-crease-angle\": 0.1" "\"crease_angle_deg\": ")
   string(FIND "${report}" "${key}" at)
   if(at LESS 0)
     message(FATAL_ERROR "skin.json has no ${key}:\n${report}")

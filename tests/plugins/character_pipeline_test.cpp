@@ -426,7 +426,7 @@ TEST_CASE("pipeline: RiggedFigure's box limbs shaded smooth stay flat instead of
   // long flat boxes whose corner normals are averaged across the bends at the joints, up to
   // 25 degrees along a side. Phong's surface of those normals bulges each long triangle by a
   // parabola of its own (blotches along the arms); its normals are further from the shading
-  // normals (3.43 degrees at 0.5) than the flat triangles' (3.24), so by default the part
+  // normals (3.60 degrees at 0.5) than the flat triangles' (3.24), so by default the part
   // follows the flat triangles. Measured (bench_fit --rows characters, --shading-shape 0.5 for
   // the right-hand figures): curvature ratio 1.48 against 1.56, shading normals (area) mean /
   // p95 5.6 / 14.9 against 6.0 / 15.3 degrees, Hausdorff 0.51 % for both.
@@ -440,7 +440,6 @@ TEST_CASE("pipeline: RiggedFigure's box limbs shaded smooth stay flat instead of
        << ca.flat_deviation_deg << ", Phong at 0.5 " << cb.shading_deviation_deg);
   CHECK(ca.shading_shape == 0.0);
   CHECK(cb.shading_shape == 0.5);
-  CHECK(ca.shading_deviation_deg == ca.flat_deviation_deg);
   CHECK(cb.flat_deviation_deg == ca.flat_deviation_deg);
   CHECK(cb.shading_deviation_deg > ca.flat_deviation_deg);
   const double diagonal = Diagonal(t.asset);
@@ -456,7 +455,8 @@ TEST_CASE("pipeline: the Fox keeps its gentle hard edges as creases and comes ou
   // has no normals, so it is drawn flat, every edge a shading step; 290 welded vertices, so
   // its control mesh is at its own resolution or finer. Its edges from 0.1 rad on are kept
   // as creases (cut open) and that fit is kept. Measured (bench_fit --rows characters,
-  // --low-poly-crease-angle 0 for the right-hand figures): Hausdorff 0.07 % against 0.38 %,
+  // --low-poly-crease-angle 0 for the right-hand figures): lod Hausdorff 0.07 % against 0.38 %
+  // of the diagonal,
   // curvature ratio 1.17 against 1.70, E1 max 0.049 against 0.39 model units.
   TwoFits t;
   if (!FitTwice(
@@ -482,7 +482,7 @@ TEST_CASE("pipeline: no data point is fitted to a distant root beside the Fox's 
           "[data][heavy]") {
   // With its hard edges from 0.05 rad on cut open, the Fox's control mesh has corner charts
   // whose patch projections could end on a distant part of the surface: a root of Yoon's
-  // projection 2 to 3 model units from the point where the surface passes within 1e-4 (three
+  // projection 1.5 to 3.1 model units from the point where the surface passes within 1e-4 (three
   // samples of its head; the fit's own Hausdorff distance read 2 % of its size, and the
   // low-poly refit was refused for it). The point fit now starts again from the closest
   // surface point where a fit is further from the point than the closest control face by more
@@ -497,8 +497,9 @@ TEST_CASE("pipeline: no data point is fitted to a distant root beside the Fox's 
   INFO("Hausdorff (of the part's scale) " << t.a.parts[0].fit.hausdorff << ", crease angle "
                                           << c.crease_angle_deg);
   CHECK(c.crease_angle_deg == Approx(0.05 * 180.0 / 3.14159265358979323846).epsilon(1e-12));
-  // Measured 3.4e-4 (the lod surface against the source: 0.04 % of the diagonal); 2e-2 before.
-  // At the default 0.1 rad alike (8.4e-4).
+  // The fit's own Hausdorff distance (of the part's size, largest side 1): measured 3.4e-4,
+  // 2e-2 before; at the default 0.1 rad 8.4e-4 (the lod surface against the source, as
+  // bench_fit measures it: 0.03 % and 0.07 % of the diagonal).
   CHECK(t.a.parts[0].fit.hausdorff < 1e-3);
   CHECK(t.b.parts[0].fit.hausdorff < 1e-3);
   CHECK(t.ra.e1_max < 0.05);

@@ -119,7 +119,6 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
       m["crease_cut_edges"] = c.crease_cut_edges;
       m["crease_cut_vertices"] = c.crease_cut_vertices;
     }
-
     if (q.grown_target > 0) {
       m["grown_target"] = q.grown_target;
       m["deviation_edge_lengths"] = q.deviation;
@@ -332,7 +331,9 @@ int RunFitCharacter(const FitArgs& a) {
   }
   CharacterFitOptions options;
   options.vertex_ratio = a.control_ratio;
-  options.shading_shape = a.shading_shape == "auto" ? -1.0 : std::stod(a.shading_shape);
+  // Checked by the option's validator: "auto" or a number in [0, 1].
+  options.shading_shape =
+      a.shading_shape == "auto" ? -1.0 : std::strtod(a.shading_shape.c_str(), nullptr);
   options.shading_max_move = a.shading_max_move;
   options.low_poly_crease_angle = a.low_poly_crease_angle;
   options.crease_smoothing = a.crease_smoothing;
@@ -647,7 +648,14 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "finer) is also fitted with its hard edges from this dihedral angle on "
                   "(radians) as creases, and that fit is kept where it is clearly closer (0: "
                   "off; docs/characters.md)")
-      ->check(CLI::Range(0.0, 1.4999))
+      ->check([](const std::string& v) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != '\0' || !(x >= 0.0 && x < 1.5)) {
+          return "a number in [0, 1.5) (radians), not '" + v + "'";
+        }
+        return "";
+      })
       ->capture_default_str();
   cmd->add_option("--shading-max-move", args->shading_max_move,
                   "Characters: the most that surface departs from the flat triangles at one "

@@ -290,6 +290,12 @@ TEST_CASE("shading surface: how far its normals are from the shading normals", "
   CHECK(Deviation(round, 0.0) == Approx(exact).epsilon(5e-3));
   // Phong's surface follows them: half as far at shape 0.5.
   CHECK(Deviation(round, 0.5) < 0.55 * Deviation(round, 0.0));
+  // Normals that point against the faces' winding give the same surface and the same measure.
+  Tube inward = round;
+  for (Vec3& n : inward.normals) n = -n;
+  for (double shape : {0.0, 0.5}) {
+    CHECK(Deviation(inward, shape) == Approx(Deviation(round, shape)).epsilon(1e-12));
+  }
   // Shaded flat, the facets' normals are the shading normals at any shape (to acos's
   // precision near 1).
   CHECK(Deviation(MakeTube(8, 2, false), 0.5) < 1e-7);

@@ -336,6 +336,24 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     fo.remesh.smooth_edges = smooth_edges;
   }
   const CreaseTest creases = options.remesh_creases ? part_creases : CreaseTest();
+  // A low-poly part (its control mesh at its own resolution or finer: at most
+  // min_control_vertices welded vertices, or vertex_ratio >= 1) whose hard edges from
+  // low_poly_crease_angle on add creases is fitted a second time with them (at the end).
+  bool low_poly_refit = false;
+  const double low = options.low_poly_crease_angle;
+  if (low > 0.0 && low < options.crease_angle && options.remesh_creases &&
+      fo.control_vertices >= dense.num_vertices() &&
+      fo.control_method == ControlMeshMethod::kRemesh) {
+    QuadRemeshOptions test = fo.remesh;
+    test.crease_angle_deg = low * 180.0 / 3.14159265358979323846;
+    test.smooth_edges = smooth_edges;
+    low_poly_refit = TestCreases(dense, test).hard_edges > part_creases.hard_edges;
+  }
+  // With the refit, the first fits are the first half of the part's work.
+  std::function<void(const std::string&, double)> first_progress = part_progress;
+  if (low_poly_refit && part_progress) {
+    first_progress = [&](const std::string& st, double f) { part_progress(st, 0.5 * f); };
+  }
   fo.clamp_control_vertices = true;
   // The control-vertex fit (options.fit's rounds) runs on a part without hard creases
   // (organic, or every sharp edge shaded smooth) only: it knows nothing of creases and pulls a
@@ -447,9 +465,9 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   const bool plain = options.remesh_creases && options.compare_without_creases &&
                      fo.control_method == ControlMeshMethod::kRemesh;
   const double share = 1.0 / ((compare ? 2.0 : 1.0) * (plain ? 2.0 : 1.0));
-  if (part_progress) {
+  if (first_progress) {
     fo.progress = [&](const char* st, std::size_t done, std::size_t total) {
-      part_progress(
+      first_progress(
           st, total > 0 ? share * static_cast<double>(done) / static_cast<double>(total) : 0.0);
     };
   }
@@ -475,9 +493,9 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     FitOptions po = plain_options;
     po.remesh.crease_angle_deg = 0.0;
     po.progress = nullptr;
-    if (part_progress) {
+    if (first_progress) {
       po.progress = [&](const char* st, std::size_t done, std::size_t total) {
-        part_progress(
+        first_progress(
             std::string(st) + ", control mesh without creases",
             share +
                 (total > 0 ? share * static_cast<double>(done) / static_cast<double>(total) : 0.0));
@@ -505,9 +523,9 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     FitOptions so = plain_options;
     so.control_method = ControlMeshMethod::kSimplify;
     so.progress = nullptr;
-    if (part_progress) {
+    if (first_progress) {
       so.progress = [&](const char* st, std::size_t done, std::size_t total) {
-        part_progress(
+        first_progress(
             std::string(st) + ", simplified control mesh",
             0.5 + (total > 0 ? 0.5 * static_cast<double>(done) / static_cast<double>(total) : 0.0));
       };
@@ -530,38 +548,44 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   fr->control_mesh.shading_shape = shape;
   fr->control_mesh.shading_deviation_deg = glm::degrees(deviation);
   fr->control_mesh.flat_deviation_deg = glm::degrees(flat_deviation);
-  fr->control_mesh.crease_angle_deg = options.remesh_creases ? crease_angle_deg : 0.0;
-  // A low-poly part (its control mesh at its own resolution or finer) is also fitted with its
-  // gentler hard edges as creases (CharacterFitOptions::low_poly_crease_angle), where that
-  // adds any, and keeps that fit where it is clearly closer.
-  const double low = options.low_poly_crease_angle;
-  if (low > 0.0 && low < options.crease_angle && options.remesh_creases &&
-      fo.control_vertices >= dense.num_vertices() &&
-      fo.control_method == ControlMeshMethod::kRemesh) {
-    QuadRemeshOptions test = fo.remesh;
-    test.crease_angle_deg = low * 180.0 / 3.14159265358979323846;
-    test.smooth_edges = smooth_edges;
-    if (TestCreases(dense, test).hard_edges > part_creases.hard_edges) {
-      CharacterFitOptions lo = options;
-      lo.crease_angle = low;
-      lo.low_poly_crease_angle = 0.0;
-      lo.compare_without_creases = false;
-      lo.compare_simplified = false;
-      FittedSurface alt;
-      FitReport alt_report;
-      std::string alt_note;
-      if (FitComponent(dense, corner_normals, lo, {}, &alt, &alt_report, &alt_note).empty() &&
-          alt_report.error.hausdorff < options.crease_margin * fr->error.hausdorff) {
-        char note[200];
-        std::snprintf(note, sizeof(note),
-                      "a low-poly part: its hard edges from %.3g degrees on were kept as "
-                      "creases (Hausdorff %.3g against %.3g, of the part's scale)",
-                      alt_report.control_mesh.crease_angle_deg, alt_report.error.hausdorff,
-                      fr->error.hausdorff);
-        *fitted = std::move(alt);
-        *fr = std::move(alt_report);
-        *kept_simplified = note;
-      }
+  // The angle from which the kept control mesh's creases were taken (none: 0).
+  fr->control_mesh.crease_angle_deg =
+      fr->control_mesh.method == "remesh" && fr->control_mesh.quality.crease_edges_kept > 0
+          ? crease_angle_deg
+          : 0.0;
+  if (low_poly_refit) {
+    // A low-poly part is also fitted with its gentler hard edges as creases
+    // (CharacterFitOptions::low_poly_crease_angle), and keeps that fit where it kept creases
+    // and is clearly closer.
+    CharacterFitOptions lo = options;
+    lo.crease_angle = options.low_poly_crease_angle;
+    lo.low_poly_crease_angle = 0.0;
+    lo.compare_without_creases = false;
+    lo.compare_simplified = false;
+    std::function<void(const std::string&, double)> lo_progress;
+    if (part_progress) {
+      lo_progress = [&](const std::string& st, double f) {
+        part_progress(st + ", gentle hard edges as creases", 0.5 + 0.5 * f);
+      };
+    }
+    FittedSurface alt;
+    FitReport alt_report;
+    std::string alt_note;
+    if (FitComponent(dense, corner_normals, lo, lo_progress, &alt, &alt_report, &alt_note)
+            .empty() &&
+        alt_report.control_mesh.quality.crease_edges_kept > 0 &&
+        alt_report.error.hausdorff < options.crease_margin * fr->error.hausdorff) {
+      char note[200];
+      std::snprintf(note, sizeof(note),
+                    "a low-poly part: its hard edges from %.3g degrees on were kept as creases "
+                    "(Hausdorff %.3g against %.3g, of the part's scale, for the fit it replaced",
+                    alt_report.control_mesh.crease_angle_deg, alt_report.error.hausdorff,
+                    fr->error.hausdorff);
+      *kept_simplified = kept_simplified->empty()
+                             ? std::string(note) + ")"
+                             : std::string(note) + ", where " + *kept_simplified + ")";
+      *fitted = std::move(alt);
+      *fr = std::move(alt_report);
     }
   }
   return std::string();
@@ -671,6 +695,12 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
         (options.input_quads >= 1.0 && std::isfinite(options.input_quads)))) {
     return Status::InvalidInput("character fit: input_quads must be 0 (off) or at least 1, not " +
                                 std::to_string(options.input_quads));
+  }
+  if (!(options.shading_shape < 0.0 ||
+        (options.shading_shape >= 0.0 && options.shading_shape <= 1.0))) {
+    return Status::InvalidInput(
+        "character fit: shading_shape must be negative (chosen per part) or in [0, 1], not " +
+        std::to_string(options.shading_shape));
   }
   if (!(options.low_poly_crease_angle >= 0.0 && options.low_poly_crease_angle < 1.5)) {
     return Status::InvalidInput(

@@ -151,7 +151,7 @@ void FitPoint(const ManifoldDomain& domain, const LocalPatch* patches, const std
   // A root of Q(z) + delta N(z) = p can be a distant part of the surface whose normal line
   // passes through p: the patch projection can end there, on a patch that the point's own
   // part of the surface does not reach (measured beside the cuts of the Fox's control mesh
-  // kept along its gentle hard edges: 2 to 3 model units, where the surface passes within
+  // kept along its gentle hard edges: 1.5 to 3.1 model units, where the surface passes within
   // 1e-4). The domain surface lies near its control mesh: an optimised fit further from the
   // point than the closest control face by more than a twentieth of that face starts again
   // from the closest surface point searched from the control face's own parameter and from

@@ -155,8 +155,10 @@ double ShadingSurface::NormalDeviation() const {
           const Vec3 own = glm::cross(pu, pv);
           const double lo = glm::length(own), ls = glm::length(shading);
           if (!(lo > 0.0) || !(ls > 0.0)) continue;
-          const double cosine = glm::dot(own, shading) / (lo * ls);
-          sum += a * std::acos(std::max(-1.0, std::min(1.0, cosine)));
+          // The angle between the two lines: Phong's surface is the same for a negated normal,
+          // and a part whose normals point against its winding is measured as one that does not.
+          const double cosine = std::abs(glm::dot(own, shading)) / (lo * ls);
+          sum += a * std::acos(std::min(1.0, cosine));
           area += a;
         }
       }

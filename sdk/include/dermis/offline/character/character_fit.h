@@ -168,15 +168,17 @@ struct CharacterFitOptions {
   /// the fit time of parts with creases.
   bool compare_without_creases = true;
   double crease_margin = 0.9;
-  /// A low-poly part, whose control mesh is at its own resolution or finer (welded vertices *
-  /// vertex_ratio at most min_control_vertices), is also fitted with its hard edges (those
-  /// not shaded smooth) from this dihedral angle on (radians) as creases, where that adds any
-  /// to crease_angle's, and that fit is kept where its two-sided Hausdorff distance is below
-  /// crease_margin times the other's. Its facets are larger than the control faces, and its
-  /// renderer draws every hard edge as a shading step: rounded, a gentle one shows as a soft
-  /// band across the facets beside it (the Fox, which has no normals and so is drawn flat:
-  /// Hausdorff 0.38 % -> 0.07 %, curvature ratio 1.70 -> 1.17; docs/characters.md, "Gentle hard
-  /// edges on low-poly parts"). 0: off. Costs one more fit of such parts.
+  /// A low-poly part, whose control mesh is at its own resolution or finer (at most
+  /// min_control_vertices welded vertices, or vertex_ratio >= 1), is also fitted with its hard
+  /// edges (those
+  /// not shaded smooth) from this dihedral angle on (radians, in [0, 1.5)) as creases, where
+  /// that adds any to crease_angle's, and that fit is kept where it keeps creases and its
+  /// two-sided Hausdorff distance is below crease_margin times the other's. Its facets are larger
+  /// than the control faces, and its renderer draws every hard edge as a shading step: rounded, a
+  /// gentle one shows as a soft band across the facets beside it (the Fox, which has no normals and
+  /// so is drawn flat: Hausdorff 0.38 % -> 0.07 %, curvature ratio 1.70 -> 1.17;
+  /// docs/characters.md, "Gentle hard edges on low-poly parts"). 0: off. Costs one more fit of such
+  /// parts.
   double low_poly_crease_angle = 0.1;
   /// Also fit each component on the simplification's control mesh (ControlMeshMethod::
   /// kSimplify), which keeps the source's crease vertices, and keep that fit where its

@@ -36,7 +36,8 @@ struct PointFit {
   /// PlaceLostPoints()).
   Index face = kInvalidIndex;
   Vec2 uv{0.0};
-  /// The Yoon projection's parameter (on the nearest corner's patch), for the unoptimised fit.
+  /// The Yoon projection's parameter (on the nearest corner's patch), for the unoptimised fit;
+  /// for a point FitPoints() started again (below), the closest surface point's.
   Index projected_face = kInvalidIndex;
   Vec2 projected_uv{0.0};
   double delta = 0.0;  ///< Common displacement (kOptimized) or the first chart's projection one.
@@ -66,6 +67,12 @@ struct PointFitOptions {
 /// Projects every point (paper section 4): closest control face, its nearest corner, Newton on
 /// that corner's patch, transitions to the other corners of the face and a few Newton steps on
 /// each; then solves Q(z) + delta N~(z) = p (docs/notes/fit.md section 4b) from the projection.
+/// An optimised fit whose |delta| (the solve's own measure; N~ is not unit length) exceeds the
+/// distance to the closest control face by more than a twentieth of that face's longest edge
+/// is a root on a distant part of the surface: the point starts again from its closest point
+/// on the domain surface (searched from the control face's parameter and its centre) and
+/// keeps the fit with the smaller |delta| (docs/fitting.md, "Points fitted to a distant
+/// root"). Points the solve loses are not started again (PlaceLostPoints places them later).
 /// Results are per point, independent of the thread count.
 void FitPoints(const ControlSurface& surface, const std::vector<Vec3>& points,
                const PointFitOptions& options, std::vector<PointFit>* out);

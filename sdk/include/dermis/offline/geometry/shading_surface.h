@@ -43,11 +43,13 @@ class ShadingSurface {
   Vec3 Point(Index f, const double w[3]) const;
   /// How far this surface's own normals are from the shading normals it was built from: the
   /// mean angle (radians, by area, over the faces with normals; 0 where there are none)
-  /// between the surface's normal and the interpolated shading normal (Σ w_k n_k), at 16
-  /// points per face (the centroids of its 4 x 4 split). Built at shape 0 it measures the flat
-  /// triangles. Normals that describe a smooth surface (a tube shaded round) come closer on
-  /// the curved surface; normals averaged across the bends of long flat facets (a box-modelled
-  /// limb shaded smooth) do not, and Phong's parabolas over those facets only add bumps.
+  /// between the lines of the surface's normal and of the interpolated shading normal
+  /// (Σ w_k n_k; either direction, as Phong's surface does not depend on it), at 16 points per
+  /// face (the centroids of its 4 x 4 split). Build() must have been called. Built at shape 0 it
+  /// measures the flat triangles. Normals that describe a smooth surface (a tube shaded round) come
+  /// closer on the curved surface; normals averaged across the bends of long flat facets (a
+  /// box-modelled limb shaded smooth) do not, and Phong's parabolas over those facets only add
+  /// bumps.
   double NormalDeviation() const;
   /// Whether the surface differs from the flat triangles anywhere.
   bool curved() const { return curved_; }
