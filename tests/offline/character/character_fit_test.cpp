@@ -700,10 +700,11 @@ TEST_CASE("character: a part follows its shading surface only where that follows
   // Phong's rounding; a bar bent by 40 degrees and shaded smooth across the bend has normals
   // that lean along flat sides, which no shape follows better than the flat sides; a tube
   // shaded flat has nothing to follow.
-  auto report = [](const Asset& asset, double max_move) {
+  auto report = [](const Asset& asset, double max_move, double shape = -1.0) {
     CharacterFitOptions options;
     options.fit.threads = 2;
     options.shading_max_move = max_move;
+    options.shading_shape = shape;
     Character ch;
     CharacterFitReport r;
     const Status s = FitCharacter(asset, options, &ch, &r);
@@ -733,17 +734,8 @@ TEST_CASE("character: a part follows its shading surface only where that follows
   CHECK(bar.shading_shape == 0.0);
   CHECK(bar.flat_deviation_deg > 1.0);
   // Phong's surface asked for: further from the normals than the facets the part took.
-  auto forced = [](const Asset& asset, double shape) {
-    CharacterFitOptions options;
-    options.fit.threads = 2;
-    options.shading_max_move = 0.0;
-    options.shading_shape = shape;
-    Character ch;
-    CharacterFitReport r;
-    REQUIRE(FitCharacter(asset, options, &ch, &r).ok());
-    return r.part_control_meshes[0];
-  };
-  const ControlMeshInfo bar_phong = forced(BentBar(40.0 * 3.14159265358979323846 / 180.0), 0.5);
+  const ControlMeshInfo bar_phong =
+      report(BentBar(40.0 * 3.14159265358979323846 / 180.0), 0.0, 0.5);
   CHECK(bar_phong.shading_shape == 0.5);
   CHECK(bar_phong.shading_deviation_deg > bar.flat_deviation_deg);
   // A shape outside [0, 1] (negative: chosen per part) is refused.
