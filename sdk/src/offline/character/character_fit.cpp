@@ -298,24 +298,26 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // (ShadingSurface::NormalDeviation; the smaller on a tie, so a part without normals stays
   // flat).
   const double max_move = options.shading_max_move * Diagonal(dense.positions);
-  double shape = options.shading_shape;
   ShadingSurface shading;
   shading.Build(dense, corner_normals, 0.0, max_move);
   const double flat_deviation = shading.NormalDeviation();
-  double deviation = flat_deviation;
-  if (shape < 0.0) {
-    shape = 0.0;
-    for (const double trial : {0.25, 0.5, 0.75}) {
-      shading.Build(dense, corner_normals, trial, max_move);
-      const double d = shading.NormalDeviation();
-      if (d < deviation) {
-        deviation = d;
-        shape = trial;
-      }
+  double shape = 0.0, deviation = flat_deviation;
+  std::vector<double> trials;
+  if (options.shading_shape < 0.0) {
+    trials = {0.25, 0.5, 0.75};
+  } else if (options.shading_shape > 0.0) {
+    trials = {options.shading_shape};  // taken whatever it measures
+  }
+  for (const double trial : trials) {
+    ShadingSurface candidate;
+    candidate.Build(dense, corner_normals, trial, max_move);
+    const double d = candidate.NormalDeviation();
+    if (options.shading_shape >= 0.0 || d < deviation) {
+      shading = std::move(candidate);
+      shape = trial;
+      deviation = d;
     }
   }
-  shading.Build(dense, corner_normals, shape, max_move);
-  if (options.shading_shape >= 0.0) deviation = shading.NormalDeviation();
   const std::vector<std::array<std::uint32_t, 2>> no_edges;
   const std::vector<std::array<std::uint32_t, 2>>& smooth_edges =
       options.creases_follow_shading ? shading.smooth_edges() : no_edges;

@@ -95,6 +95,15 @@ void ShadingSurface::Build(const PolygonMesh& mesh, const std::vector<Vec3>& cor
   }
 }
 
+Vec3 ShadingSurface::EdgeTerm(Index f, std::size_t c) const {
+  const Index* v = &mesh_->face_vertices[mesh_->face_offsets[f]];
+  const std::size_t fi = static_cast<std::size_t>(f);
+  const std::size_t k = (c + 1) % 3, l = (c + 2) % 3;
+  const Vec3 &xk = mesh_->positions[v[k]], &xl = mesh_->positions[v[l]];
+  const Vec3 &nk = normals_[3 * fi + k], &nl = normals_[3 * fi + l];
+  return glm::dot(xl - xk, nk) * nk + glm::dot(xk - xl, nl) * nl;
+}
+
 Vec3 ShadingSurface::Point(Index f, const double w[3]) const {
   const Index* v = &mesh_->face_vertices[mesh_->face_offsets[f]];
   const std::size_t fi = static_cast<std::size_t>(f);
@@ -109,10 +118,7 @@ Vec3 ShadingSurface::Point(Index f, const double w[3]) const {
   for (std::size_t c = 0; c < 3; ++c) {
     if (hard_[3 * fi + c]) continue;
     const std::size_t k = (c + 1) % 3, l = (c + 2) % 3;
-    const Vec3 &xk = mesh_->positions[v[k]], &xl = mesh_->positions[v[l]];
-    const Vec3 &nk = normals_[3 * fi + k], &nl = normals_[3 * fi + l];
-    move -= scale_[3 * fi + c] * w[k] * w[l] *
-            (glm::dot(xl - xk, nk) * nk + glm::dot(xk - xl, nl) * nl);
+    move -= scale_[3 * fi + c] * w[k] * w[l] * EdgeTerm(f, c);
   }
   return p + shape_ * move;
 }
@@ -142,10 +148,7 @@ double ShadingSurface::NormalDeviation() const {
             for (std::size_t c = 0; c < 3; ++c) {
               if (hard_[3 * fi + c]) continue;
               const std::size_t k = (c + 1) % 3, l = (c + 2) % 3;
-              const Vec3 &xk = mesh_->positions[v[k]], &xl = mesh_->positions[v[l]];
-              const Vec3 &nk = normals_[3 * fi + k], &nl = normals_[3 * fi + l];
-              const Vec3 term = shape_ * scale_[3 * fi + c] *
-                                (glm::dot(xl - xk, nk) * nk + glm::dot(xk - xl, nl) * nl);
+              const Vec3 term = shape_ * scale_[3 * fi + c] * EdgeTerm(f, c);
               pu -= (du[k] * w[l] + w[k] * du[l]) * term;
               pv -= (dv[k] * w[l] + w[k] * dv[l]) * term;
             }

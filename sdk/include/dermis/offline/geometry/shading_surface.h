@@ -62,6 +62,11 @@ class ShadingSurface {
   const std::vector<std::array<std::uint32_t, 2>>& smooth_edges() const { return smooth_edges_; }
 
  private:
+  /// The term of face f's edge opposite corner c, before its scale and the shape factor:
+  /// ((x_l - x_k).n_k) n_k + ((x_k - x_l).n_l) n_l, k and l the edge's corners (Phong's move
+  /// is minus the sum of w_k w_l times these).
+  Vec3 EdgeTerm(Index f, std::size_t c) const;
+
   const PolygonMesh* mesh_ = nullptr;
   double shape_ = 0.0;
   bool curved_ = false;
