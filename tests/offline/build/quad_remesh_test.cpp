@@ -392,8 +392,9 @@ TEST_CASE("quad remesh: a mesh modelled in quads gets its own quads back") {
     }
     CHECK(cells.count(quad) == 1);
   }
-  // Too many vertices for the count the remesh needs (more than 1.5 times it), or too few:
-  // the remesh.
+  // Too many vertices for the count the remesh needs (more than 1.5 times it), or too few
+  // where closer loops overshoot that (the strips of each direction are all as long, so they
+  // split together: the 312 vertices become 624, above 1.5 x 400): the remesh.
   PolygonMesh m;
   QuadRemeshReport r;
   remesh(cyl.positions, tris, 150, 1.5, &m, &r);
@@ -468,6 +469,53 @@ TEST_CASE("quad remesh: edge loops go into the input's own quads where their str
   REQUIRE(QuadRemesh(tube.positions, Triangles(tube), "tube", options, &out, &r).ok());
   REQUIRE(r.input_quads);
   CHECK(out.num_vertices() == 72);
+}
+
+TEST_CASE("quad remesh: coarse input quads get closer loops across and along") {
+  // An octagonal tube of 8 x 2 quads, radius 1 and 6 long (a box-modelled limb): 24 vertices,
+  // far below the remesh's count at a target of 200, and the loops at the default factor (3
+  // times the control edge) give fewer still. The loops come closer until the count reaches
+  // the remesh's (docs/characters.md, "Coarse input quads"): the strips around are split as
+  // well as the strips along, every input vertex stays where it is, and the new ones lie on
+  // the input's facets, the grid regular.
+  const PolygonMesh tube = Cylinder(8, 2, 1.0, 6.0, false);
+  QuadRemeshOptions options;
+  options.target_vertices = 200;
+  options.input_quads_max_ratio = 1.5;
+  PolygonMesh out;
+  QuadRemeshReport r;
+  REQUIRE(QuadRemesh(tube.positions, Triangles(tube), "tube", options, &out, &r).ok());
+  INFO(out.num_vertices() << " vertices, the remesh " << r.remesh_vertices);
+  REQUIRE(r.input_quads);
+  CheckRemesh(tube, out, r, 1, 2);
+  CHECK(r.valence4_share == 1.0);
+  CHECK(out.num_vertices() >= r.remesh_vertices);
+  CHECK(out.num_vertices() <= 1.5 * r.remesh_vertices);
+  for (std::size_t v = 0; v < tube.positions.size(); ++v) {
+    CHECK(out.positions[v] == tube.positions[v]);  // the input's vertices first, in order
+  }
+  // On the octagon's sides: each point's distance from the axis along its side's normal is
+  // the apothem cos(22.5 deg), and each ring (one z) has the same points, a multiple of 8.
+  const double apothem = std::cos(kPi / 8.0);
+  std::map<double, int> rings;
+  for (const Vec3& p : out.positions) {
+    const double a = std::atan2(p.y, p.x);
+    const double side = std::floor(a / (kPi / 4.0)) + 0.5;  // the side's middle, in eighths
+    const double along = p.x * std::cos(side * kPi / 4.0) + p.y * std::sin(side * kPi / 4.0);
+    CHECK(along == Approx(apothem).margin(1e-9));
+    ++rings[std::round(p.z * 1e9) / 1e9];
+  }
+  const int around = rings.begin()->second;
+  CHECK(around > 8);  // the strips around are split too
+  CHECK(around % 8 == 0);
+  CHECK(rings.size() > 3);  // and the strips along
+  for (const auto& [z, count] : rings) CHECK(count == around);
+  CHECK(out.num_vertices() == around * static_cast<int>(rings.size()));
+  // Without loops (factor 0) the coarse quads stay as they are: fewer vertices than the
+  // remesh, which is kept.
+  options.input_quads_edge_factor = 0.0;
+  REQUIRE(QuadRemesh(tube.positions, Triangles(tube), "tube", options, &out, &r).ok());
+  CHECK_FALSE(r.input_quads);
 }
 
 TEST_CASE("quad remesh: a regular quad grid stays regular") {

@@ -328,8 +328,9 @@ TEST_CASE("character: samples on a low-poly box's edges hold the surface to its 
   CharacterFitOptions options;
   options.fit.threads = 2;
   // The samples' effect on the control mesh that ignores creases (the remesh keeping them is
-  // checked below).
+  // checked below), the remesh's: the box's own quads (at the end) hold it without them.
   options.remesh_creases = false;
+  options.input_quads = 0.0;
   std::int64_t with_edges = 0, inside_only = 0;
   const double d = LodBoxDistance(options, &with_edges);
   // As before the edge samples: as many samples per control edge, but the creases as sparse
@@ -352,7 +353,8 @@ TEST_CASE("character: samples on a low-poly box's edges hold the surface to its 
   // With the box's 12 edges kept as control edges (the default), closer still: measured
   // 0.0614 (2.5 % of the diagonal) against 0.077, and 0.088 with the sparse samples (0.0585
   // with the rows beside creases; 0.0604 against 0.066 with the smoothing of 1e-2, which
-  // helps the mesh without creases more).
+  // helps the mesh without creases more); cut open along them (CharacterFitOptions::
+  // cut_creases, the default since), each side is flat: 0 to rounding.
   CharacterFitOptions kept = options;
   kept.remesh_creases = true;
   std::int64_t kept_coefficients = 0;
@@ -360,6 +362,25 @@ TEST_CASE("character: samples on a low-poly box's edges hold the surface to its 
   INFO("creases kept: " << d_kept << " (" << kept_coefficients << " coefficients)");
   CHECK(d_kept < 0.95 * d);
   CHECK(d_kept < 0.065);
+  // The box's own quads (the default, CharacterFitOptions::input_quads), given rows of loops
+  // until they have the remesh's count ("Coarse input quads"), are a regular grid on each
+  // side. Without creases its domain surface alone holds the box as the samples hold the
+  // remesh's: measured 0.0654 with the sparse samples (no displacement level lowers the error
+  // by 1 %); the corners, where three creases meet, stay rounded. With the creases kept and
+  // cut open, each side is its own flat grid: the box itself, to rounding.
+  CharacterFitOptions own_quads = sparse;
+  own_quads.input_quads = CharacterFitOptions{}.input_quads;
+  std::int64_t own_coefficients = 0;
+  const double d_own = LodBoxDistance(own_quads, &own_coefficients);
+  own_quads.remesh_creases = true;
+  std::int64_t own_kept_coefficients = 0;
+  const double d_own_kept = LodBoxDistance(own_quads, &own_kept_coefficients);
+  INFO("own quads, sparse samples: " << d_own << " (" << own_coefficients
+                                     << " coefficients), creases kept " << d_own_kept << " ("
+                                     << own_kept_coefficients << ")");
+  CHECK(d_own < 0.5 * d_sparse);
+  CHECK(d_own < 0.1);
+  CHECK(d_own_kept < 1e-5);
 }
 
 TEST_CASE("character: the simplification's control mesh is kept only where it fits better") {
@@ -644,14 +665,24 @@ TEST_CASE("character: a smooth-shaded tube follows its shading surface") {
   INFO("mean distance from the unit cylinder: flat samples "
        << facets << ", on the shading " << shaded << " (capped " << capped << "), flat-shaded tube "
        << flat_shaded);
-  // Measured 0.050, 0.0062 (0.043 capped) and 0.048; before the smooth-shaded tube got the
+  // Measured 0.044, 0.0048 (0.039 capped) and 0.048 (the smooth-shaded tube on its own quads
+  // with loops, "Coarse input quads", the flat-shaded one cut open along its hard edges); 0.050,
+  // 0.0062, 0.043 and 0.048 on the remesh; before the smooth-shaded tube got the
   // control-vertex fit (CharacterFitOptions::fit, parts without hard creases) 0.048, 0.0048
   // and 0.041.
   CHECK(facets > 0.03);
   CHECK(shaded < 0.25 * facets);
   CHECK(capped < facets);
   CHECK(capped > shaded);
-  CHECK(flat_shaded == Approx(facets).epsilon(0.05));
+  // Both follow the facets: a side's points lie 1 - cos(22.5 deg) / cos(phi) inside the
+  // circle, 0.0503 on average along the side (tan(phi) uniform); the surfaces round the edges
+  // between the sides a little, towards the circle.
+  const double t = std::tan(3.14159265358979323846 / 8.0);
+  const double side_mean = 1.0 - std::cos(3.14159265358979323846 / 8.0) *
+                                     (0.5 * std::sqrt(1.0 + t * t) + std::asinh(t) / (2.0 * t));
+  CHECK(side_mean == Approx(0.0503).epsilon(0.01));
+  CHECK(facets == Approx(side_mean).epsilon(0.15));
+  CHECK(flat_shaded == Approx(side_mean).epsilon(0.15));
 }
 
 /// A bar of square cross-section 0.4 across, 3 long along x, bent by `bend` radians about y

@@ -315,10 +315,11 @@ bool InsertEdgeLoops(const ReferenceSurface& ref, const SizingField& sizing,
 
 // Step 6 of QuadRemesh(): the input's triangles paired back into quads (its crease edges never a
 // diagonal), compacted to the vertices they use, with edge loops and its leftover triangles made
-// quads (InsertEdgeLoops). True, with *own and *report (the remesh's report with the quad
-// measures replaced), where the result is a valid mesh with the input's components and loops,
-// at least as regular as `remesh` (share of valence-4 interior vertices) with no higher
-// valence, and has between 1 and input_quads_max_ratio times its vertices.
+// quads (InsertEdgeLoops; closer loops where the input's quads are coarser than `remesh`).
+// True, with *own and *report (the remesh's report with the quad measures replaced), where the
+// result is a valid mesh with the input's components and loops, at least as regular as `remesh`
+// (share of valence-4 interior vertices) with no higher valence, and has between 1 and
+// input_quads_max_ratio times its vertices.
 bool InputQuads(const std::vector<Vec3>& positions, const std::vector<std::uint32_t>& triangles,
                 const ReferenceSurface& ref, const SizingField& sizing, const CreaseChains& creases,
                 const QuadRemeshOptions& options, const PolygonMesh& remesh, PolygonMesh* own,
@@ -342,12 +343,45 @@ bool InputQuads(const std::vector<Vec3>& positions, const std::vector<std::uint3
   }
   std::sort(crease_edges.begin(), crease_edges.end());
   int crease_control_edges = 0;
+  const PolygonMesh paired = *own;
   if (!InsertEdgeLoops(ref, sizing, crease_edges, options.input_quads_edge_factor, own,
                        &crease_control_edges)) {
     return false;
   }
-  const double n_own = static_cast<double>(own->positions.size());
   const double n_remesh = static_cast<double>(remesh.positions.size());
+  // Quads coarser than the remesh (a box-modelled figure, whose long limb spans are one quad
+  // across): the loops come closer, down to a tenth of the factor, at the largest factor whose
+  // mesh has at least the remesh's vertices (bisection to a thousandth of the factor: the count
+  // only grows as the factor falls), so every strip gets rows across as well as rings along.
+  if (static_cast<double>(own->positions.size()) < n_remesh &&
+      options.input_quads_edge_factor > 0.0) {
+    auto loops = [&](double factor, PolygonMesh* mesh, int* crease_count) {
+      *mesh = paired;
+      return InsertEdgeLoops(ref, sizing, crease_edges, factor, mesh, crease_count);
+    };
+    double hi = options.input_quads_edge_factor, lo = 0.1 * hi;
+    PolygonMesh dense;
+    int dense_creases = 0;
+    if (!loops(lo, &dense, &dense_creases)) return false;
+    if (static_cast<double>(dense.positions.size()) >= n_remesh) {
+      while (hi - lo > 1e-3 * options.input_quads_edge_factor) {
+        const double mid = 0.5 * (lo + hi);
+        PolygonMesh trial;
+        int trial_creases = 0;
+        if (!loops(mid, &trial, &trial_creases)) return false;
+        if (static_cast<double>(trial.positions.size()) >= n_remesh) {
+          lo = mid;
+          dense = std::move(trial);
+          dense_creases = trial_creases;
+        } else {
+          hi = mid;
+        }
+      }
+      *own = std::move(dense);
+      crease_control_edges = dense_creases;
+    }
+  }
+  const double n_own = static_cast<double>(own->positions.size());
   if (n_own < n_remesh || n_own > options.input_quads_max_ratio * n_remesh) return false;
   if (!ValidatePolygonMesh(*own).ok()) return false;
   QuadRemeshReport r = *report;
