@@ -351,20 +351,29 @@ bool InputQuads(const std::vector<Vec3>& positions, const std::vector<std::uint3
   const double n_remesh = static_cast<double>(remesh.positions.size());
   // Quads coarser than the remesh (a box-modelled figure, whose long limb spans are one quad
   // across): the loops come closer, down to a tenth of the factor, at the largest factor whose
-  // mesh has at least the remesh's vertices (bisection to a thousandth of the factor: the count
-  // only grows as the factor falls), so every strip gets rows across as well as rings along.
+  // mesh has at least the remesh's vertices (to a thousandth of the factor: the count only grows
+  // as the factor falls), so every strip gets rows across as well as rings along.
   if (static_cast<double>(own->positions.size()) < n_remesh &&
       options.input_quads_edge_factor > 0.0) {
-    auto loops = [&](double factor, PolygonMesh* mesh, int* crease_count) {
+    auto loops = [&](double f, PolygonMesh* mesh, int* crease_count) {
       *mesh = paired;
-      return InsertEdgeLoops(ref, sizing, crease_edges, factor, mesh, crease_count);
+      return InsertEdgeLoops(ref, sizing, crease_edges, f, mesh, crease_count);
     };
-    double hi = options.input_quads_edge_factor, lo = 0.1 * hi;
+    // Down in steps of 0.8 to the first factor that reaches the count (so that no trial is
+    // much larger than the count asks for), then bisection between it and the step before.
+    const double factor = options.input_quads_edge_factor;
+    double hi = factor, lo = factor;
     PolygonMesh dense;
     int dense_creases = 0;
-    if (!loops(lo, &dense, &dense_creases)) return false;
-    if (static_cast<double>(dense.positions.size()) >= n_remesh) {
-      while (hi - lo > 1e-3 * options.input_quads_edge_factor) {
+    bool reached = false;
+    while (!reached && lo > 0.1 * factor) {
+      hi = lo;
+      lo = std::max(0.1 * factor, 0.8 * lo);
+      if (!loops(lo, &dense, &dense_creases)) return false;
+      reached = static_cast<double>(dense.positions.size()) >= n_remesh;
+    }
+    if (reached) {
+      while (hi - lo > 1e-3 * factor) {
         const double mid = 0.5 * (lo + hi);
         PolygonMesh trial;
         int trial_creases = 0;
