@@ -274,6 +274,12 @@ TEST_CASE("pipeline: RiggedFigure's hard edges cut open stay sharp and closed th
   }
   const Character &a = t.a, &b = t.b;
   const CharacterFitReport &ra = t.ra, &rb = t.rb;
+  // Its own quads with closer loops (their 130 vertices, 414 with the default loops, are fewer
+  // than the 1,586 its remesh needs).
+  CHECK(ra.part_control_meshes[0].quality.input_quads);
+  CHECK(rb.part_control_meshes[0].quality.input_quads);
+  CHECK(ra.part_control_meshes[0].quality.vertices >=
+        ra.part_control_meshes[0].quality.remesh_vertices);
   CHECK(ra.part_control_meshes[0].crease_cut_edges > 0);
   CHECK(ra.part_control_meshes[0].crease_cut_vertices > 0);
   CHECK(rb.part_control_meshes[0].crease_cut_edges == 0);

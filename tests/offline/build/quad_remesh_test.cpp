@@ -511,6 +511,22 @@ TEST_CASE("quad remesh: coarse input quads get closer loops across and along") {
   CHECK(rings.size() > 3);  // and the strips along
   for (const auto& [z, count] : rings) CHECK(count == around);
   CHECK(out.num_vertices() == around * static_cast<int>(rings.size()));
+  // Measured: the remesh has 204 vertices; 16 around and 13 rings give 208 (the factor 1.23;
+  // at 1.54 the loops give 176, below it).
+  CHECK(around == 16);
+  CHECK(rings.size() == 13);
+  // A longer tube at a lower target: stepping the factor down by 0.8, the loops go from 88
+  // vertices (factor 1.23) to 240 (0.98), more than 1.5 times the remesh's 102; between the two
+  // the bisection finds 104 (8 around, 13 rings), which is kept.
+  const PolygonMesh longer = Cylinder(8, 2, 1.0, 9.0, false);
+  options.target_vertices = 100;
+  REQUIRE(QuadRemesh(longer.positions, Triangles(longer), "longer tube", options, &out, &r).ok());
+  INFO(out.num_vertices() << " vertices, the remesh " << r.remesh_vertices);
+  REQUIRE(r.input_quads);
+  CheckRemesh(longer, out, r, 1, 2);
+  CHECK(out.num_vertices() >= r.remesh_vertices);
+  CHECK(out.num_vertices() < 1.2 * r.remesh_vertices);
+  CHECK(out.num_vertices() % 8 == 0);
   // Without loops (factor 0) the coarse quads stay as they are: fewer vertices than the
   // remesh, which is kept.
   options.input_quads_edge_factor = 0.0;

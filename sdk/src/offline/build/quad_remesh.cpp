@@ -359,8 +359,9 @@ bool InputQuads(const std::vector<Vec3>& positions, const std::vector<std::uint3
       *mesh = paired;
       return InsertEdgeLoops(ref, sizing, crease_edges, f, mesh, crease_count);
     };
-    // Down in steps of 0.8 to the first factor that reaches the count (so that no trial is
-    // much larger than the count asks for), then bisection between it and the step before.
+    // Down in steps of 0.8 to the first factor that reaches the count (no trial is more than
+    // one step past the factor the count asks for, where the densest loops could be many times
+    // the count), then bisection between it and the step before.
     const double factor = options.input_quads_edge_factor;
     double hi = factor, lo = factor;
     PolygonMesh dense;
