@@ -280,6 +280,15 @@ TEST_CASE("pipeline: RiggedFigure's hard edges cut open stay sharp and closed th
   CHECK(rb.part_control_meshes[0].quality.input_quads);
   CHECK(ra.part_control_meshes[0].quality.vertices >=
         ra.part_control_meshes[0].quality.remesh_vertices);
+  // The report says why it has more control vertices than the source has vertices.
+  REQUIRE(ra.part_notes.size() == 1);
+  INFO(ra.part_notes[0]);
+  CHECK(ra.part_notes[0].find("its own quads, with edge loops, stand in for its remesh of " +
+                              std::to_string(ra.part_control_meshes[0].quality.remesh_vertices) +
+                              " vertices") != std::string::npos);
+  CHECK(ra.part_notes[0].find("with " +
+                              std::to_string(ra.part_control_meshes[0].crease_cut_vertices) +
+                              " vertices added") != std::string::npos);
   CHECK(ra.part_control_meshes[0].crease_cut_edges > 0);
   CHECK(ra.part_control_meshes[0].crease_cut_vertices > 0);
   CHECK(rb.part_control_meshes[0].crease_cut_edges == 0);

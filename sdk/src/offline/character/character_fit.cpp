@@ -832,22 +832,32 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
         char deviation[64], turn[64];
         std::snprintf(deviation, sizeof(deviation), "%.2g", q.deviation);
         std::snprintf(turn, sizeof(turn), "%.3g", options.max_turn);
+        const std::string why =
+            q.grown_target > q.target_vertices
+                ? "its thin parts need them (the remesh follows the part within " +
+                      std::string(deviation) + " edge lengths only from " +
+                      std::to_string(q.grown_target) + " vertices on)"
+                : "its remesh cannot be coarser: every edge of the remeshed triangle "
+                  "mesh may turn the surface normal by at most " +
+                      std::string(turn) +
+                      " radians, and each of its triangles becomes 3 or 4 quads";
+        // The input's own quads stand in for a remesh of at most as many vertices
+        // (QuadRemeshOptions::input_quads_max_ratio), which the reason is about.
         note = "part " + std::to_string(ch.parts.size()) + " (" + stage + ") has " +
                std::to_string(fr.control_vertices) + " control vertices for " +
                std::to_string(dense.num_vertices()) + " vertices: " +
-               (q.grown_target > q.target_vertices
-                    ? "its thin parts need them (the remesh follows the part within " +
-                          std::string(deviation) + " edge lengths only from " +
-                          std::to_string(q.grown_target) + " vertices on)"
-                    : "its remesh cannot be coarser: every edge of the remeshed triangle "
-                      "mesh may turn the surface normal by at most " +
-                          std::string(turn) +
-                          " radians, and each of its triangles becomes 3 or 4 quads") +
+               (q.input_quads ? "its own quads, with edge loops, stand in for its remesh of " +
+                                    std::to_string(q.remesh_vertices) + " vertices; " + why
+                              : why) +
                (q.crease_edges > 0
                     ? "; its " + std::to_string(q.crease_chains) +
                           " crease chains keep their corners and follow the "
                           "creases (" +
                           std::to_string(q.control_crease_edges) + " control edges on them)"
+                    : std::string()) +
+               (fr.control_mesh.crease_cut_vertices > 0
+                    ? "; cut open along them, with " +
+                          std::to_string(fr.control_mesh.crease_cut_vertices) + " vertices added"
                     : std::string());
         if (!fr.control_mesh.fallback.empty()) {
           note = "part " + std::to_string(ch.parts.size()) + " (" + stage + ") has " +
