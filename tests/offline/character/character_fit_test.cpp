@@ -719,6 +719,21 @@ Asset BentBar(double bend) {
   return SinglePrimitiveAsset(prim, "bent_bar", "bar");
 }
 
+namespace {
+
+/// The control mesh report of `asset`'s one part, fitted with `options`.
+ControlMeshInfo FitControlMesh(const Asset& asset, const CharacterFitOptions& options) {
+  Character ch;
+  CharacterFitReport r;
+  const Status s = FitCharacter(asset, options, &ch, &r);
+  INFO(s.message());
+  REQUIRE(s.ok());
+  REQUIRE(r.part_control_meshes.size() == 1u);
+  return r.part_control_meshes[0];
+}
+
+}  // namespace
+
 TEST_CASE("character: a part follows its shading surface only where that follows the normals") {
   // By default (shading_shape < 0) a part takes, of 0, 0.25, 0.5 and 0.75, the shape whose
   // surface's normals come closest to its shading normals. A round tube's normals ask for
@@ -730,13 +745,7 @@ TEST_CASE("character: a part follows its shading surface only where that follows
     options.fit.threads = 2;
     options.shading_max_move = max_move;
     options.shading_shape = shape;
-    Character ch;
-    CharacterFitReport r;
-    const Status s = FitCharacter(asset, options, &ch, &r);
-    INFO(s.message());
-    REQUIRE(s.ok());
-    REQUIRE(r.part_control_meshes.size() == 1u);
-    return r.part_control_meshes[0];
+    return FitControlMesh(asset, options);
   };
   // Uncapped: the tube is 4.1 across its diagonal, and the default cap (0.25 % of that) is
   // far below the 0.068 Phong moves a side's middle (see the smooth-shaded tube's test).
@@ -857,13 +866,7 @@ TEST_CASE("character: edges shaded smooth are not creases but hard edges are") {
     options.fit.threads = 2;
     options.creases_follow_shading = follow_shading;
     options.compare_without_creases = false;  // the crease-aware remesh's own count
-    Character ch;
-    CharacterFitReport report;
-    const Status s = FitCharacter(asset, options, &ch, &report);
-    INFO(s.message());
-    REQUIRE(s.ok());
-    REQUIRE(report.part_control_meshes.size() == 1u);
-    return report.part_control_meshes[0].quality.crease_edges;
+    return FitControlMesh(asset, options).quality.crease_edges;
   };
   const Asset smooth = LowPolyTube(8, true), flat = LowPolyTube(8, false);
   CHECK(creases(smooth, true) == 0);
