@@ -252,8 +252,12 @@ TEST_CASE("pipeline: RiggedSimple's cap rims get support rows and the surface fo
   const double ha = a.parts[0].fit.hausdorff, hb = b.parts[0].fit.hausdorff;
   INFO("Hausdorff (of the part's scale): with support rows " << ha << ", without " << hb);
   CHECK(ha < 0.75 * hb);
-  // The bound export's error stays small against the part (E1 max, model units; diagonal 9.3).
-  CHECK(ra.e1_max < 2e-4 * Diagonal(asset));
+  // The bound export's error stays small against the part (E1 max, model units; diagonal 9.6):
+  // measured 0.0022 (0.0003 when the tube's sliver triangles had seven times as many samples,
+  // before 2026-12-05: the budget of 3 coefficients per fitted point then allowed 8 levels
+  // where it now allows 5; `dermis fit --creases-closed --coefficients-per-point 6` gives
+  // 0.00033 again with 12,948 coefficients).
+  CHECK(ra.e1_max < 4e-4 * Diagonal(asset));
 }
 
 TEST_CASE("pipeline: RiggedFigure's hard edges cut open stay sharp and closed through its clip",

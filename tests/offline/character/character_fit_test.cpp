@@ -465,12 +465,14 @@ TEST_CASE("character: rows of samples beside a crease keep the surface from over
   INFO("Hausdorff (of the part's scale): with rows " << fw.hausdorff << " (" << fw.coefficients
                                                      << " coefficients), without " << fo.hausdorff
                                                      << " (" << fo.coefficients << ")");
-  // Measured 0.0052 against 0.0093 (0.047 and 0.085 model units): without the rows the
-  // finest levels stand off the wide end's rim between the rim's samples and the grid of the
-  // long side triangles.
+  // Measured 0.0049 against 0.0090 (0.045 and 0.083 model units): without the rows the
+  // finest levels stand off the wide end's rim between the rim's samples and those of the long
+  // side triangles (slivers: their edges' samples, 2026-12-05; 0.0052 against 0.0093 when
+  // their grids were denser across). The rows add 8 % to the coefficients (6,743 against
+  // 6,222; 5 % beside the slivers' denser grids).
   CHECK(fw.hausdorff < 0.8 * fo.hausdorff);
   CHECK(fw.hausdorff < 0.007);
-  CHECK(20 * fw.coefficients < 21 * fo.coefficients);  // within 5%
+  CHECK(10 * fw.coefficients < 11 * fo.coefficients);  // within 10%
 }
 
 }  // namespace dermis

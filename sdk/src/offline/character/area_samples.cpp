@@ -18,8 +18,9 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
   if (!(spacing > 0.0)) return out;
   const std::size_t nf = static_cast<std::size_t>(mesh.num_faces());
   std::vector<Vec3> normal(nf);
-  // Segments per edge of each triangle's grid of samples (0: too small for a grid).
-  std::vector<int> grid(nf, 0);
+  // Segments per edge of each triangle's grid of samples (0: too small for a grid), or, for a
+  // sliver, its rows (below) and the corner its longest edge starts from.
+  std::vector<int> grid(nf, 0), rows(nf, 0), base_corner(nf, 0);
   std::map<std::pair<Index, Index>, std::vector<Index>> edges;
   const double cos_crease = std::cos(crease_angle);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
@@ -46,16 +47,49 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
   };
   for (std::size_t f = 0; f < nf; ++f) {
     const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
-    const Vec3 &a = mesh.positions[v[0]], &b = mesh.positions[v[1]], &c = mesh.positions[v[2]];
-    const double longest =
-        std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
+    const Vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
+    int k0 = 0;
+    double longest = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double l = glm::length(p[(k + 1) % 3] - p[k]);
+      if (l > longest) longest = l, k0 = k;
+    }
     if (!(longest > 2.0 * spacing)) continue;
-    const int n_grid = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
-    grid[f] = n_grid;
-    for (int i = 1; i < n_grid; ++i) {
-      for (int j = 1; i + j < n_grid; ++j) {
-        const double s = double(i) / n_grid, t = double(j) / n_grid;
-        const double w[3] = {1.0 - s - t, s, t};
+    const int k1 = (k0 + 1) % 3, k2 = (k0 + 2) % 3;
+    // Its height over the longest edge.
+    const double height = glm::length(glm::cross(p[k1] - p[k0], p[k2] - p[k0])) / longest;
+    if (!(height < 0.25 * longest)) {
+      // A barycentric grid: its points are longest / n_grid <= spacing apart along the longest
+      // edge and about as far apart along the others.
+      const int n_grid = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
+      grid[f] = n_grid;
+      for (int i = 1; i < n_grid; ++i) {
+        for (int j = 1; i + j < n_grid; ++j) {
+          const double s = double(i) / n_grid, t = double(j) / n_grid;
+          const double w[3] = {1.0 - s - t, s, t};
+          out.push_back(at(f, w));
+        }
+      }
+      continue;
+    }
+    // A sliver (less than a quarter as high as long), whose grid's rows would be less than a
+    // quarter of the spacing apart across it (RiggedSimple's 4.6 by 0.2 tube triangles had
+    // points about 0.01 apart around the tube and 0.3 apart along it, docs/characters.md,
+    // "Slivers sampled as far apart across as along"): rows parallel to its longest edge, at
+    // most `spacing` apart, each with points spaced like the rows; none inside where it is
+    // narrower than twice the spacing (its edges carry samples).
+    const int n_rows = std::clamp(static_cast<int>(std::ceil(height / spacing)), 1, 64);
+    rows[f] = n_rows;
+    base_corner[f] = k0;
+    for (int r = 1; r < n_rows; ++r) {
+      const double t = double(r) / n_rows;
+      // The row from (1 - t) p[k0] + t p[k2] to (1 - t) p[k1] + t p[k2]; its ends are on the
+      // other edges, which have samples of their own.
+      const int n_row = std::min(128, static_cast<int>(std::ceil((1.0 - t) * longest / spacing)));
+      for (int i = 1; i < n_row; ++i) {
+        const double s = double(i) / n_row;
+        double w[3];
+        w[k0] = (1.0 - s) * (1.0 - t), w[k1] = s * (1.0 - t), w[k2] = t;
         out.push_back(at(f, w));
       }
     }
@@ -85,13 +119,15 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     }
     if (!sharp || !crease_rows || crease_factor <= 1.0) continue;
     // The grid inside a large triangle (above) starts one grid row, height / n_grid, away from
-    // its edges: beside a sharp edge that gap is up to crease_factor times the spacing h along
-    // the edge, and the finest displacement levels, held there only by their smoothing,
-    // overshoot the crease (RiggedSimple's cap rim, docs/characters.md). Rows parallel to the
-    // sharp edge, h apart (their points spaced like the grid), fill the gap.
+    // its edges, a sliver's rows up to `spacing`: beside a sharp edge that gap is up to
+    // crease_factor times the spacing h along the edge, and the finest displacement levels,
+    // held there only by their smoothing, overshoot the crease (RiggedSimple's cap rim,
+    // docs/characters.md). Rows parallel to the sharp edge, h apart (their points spaced like
+    // the grid), fill the gap.
     for (Index f : e.second) {
-      const int n_grid = grid[static_cast<std::size_t>(f)];
-      if (n_grid == 0) continue;  // no grid inside: no gap to fill
+      const std::size_t fs = static_cast<std::size_t>(f);
+      const int n_grid = grid[fs], n_rows = rows[fs];
+      if (n_grid == 0 && n_rows == 0) continue;  // a small triangle: no gap to fill
       const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
       int kc = 0;
       for (int k = 0; k < 3; ++k) {
@@ -101,7 +137,13 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
       const Vec3& c = mesh.positions[v[kc]];
       const double base = glm::length(b - a);
       const double height = base > 0.0 ? glm::length(glm::cross(b - a, c - a)) / base : 0.0;
-      const double gap = height / n_grid;
+      // A sliver's first row is height / n_rows from its longest edge; from its other edges
+      // its nearest points, inside or on its other edges, are at most `spacing` away.
+      const bool longest_edge = (fa == base_corner[fs] && fb == (base_corner[fs] + 1) % 3) ||
+                                (fb == base_corner[fs] && fa == (base_corner[fs] + 1) % 3);
+      const double gap = n_grid > 0     ? height / n_grid
+                         : longest_edge ? height / n_rows
+                                        : std::min(spacing, height);
       for (int r = 1; r * h < gap; ++r) {
         const double t = r * h / height;
         const Vec3 p = a + t * (c - a), q = b + t * (c - b);

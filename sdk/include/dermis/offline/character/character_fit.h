@@ -68,9 +68,10 @@ struct CharacterFitOptions {
   /// Every edge of the remeshed triangle mesh turns the normal by at most about this many
   /// radians (SizingOptions::max_turn), whatever the count: a limb keeps enough edges around.
   double max_turn = 1.0;
-  /// Data points inside the triangles: a barycentric grid whose spacing is the control mesh's
-  /// mean edge (sqrt(area / control vertices)) divided by this, so the surface follows the
-  /// source between its vertices. 0: vertices only.
+  /// Data points inside the triangles, about the control mesh's mean edge (sqrt(area / control
+  /// vertices), the count asked for) divided by this apart: a barycentric grid, or rows along a
+  /// sliver (less than a quarter as high as long), so the surface follows the source between
+  /// its vertices. 0: vertices only.
   double samples_per_control_edge = 2.0;
   /// Points along the source's edges are spaced like the grid inside its triangles; along its
   /// boundaries and creases (a dihedral angle above crease_angle, radians) crease_samples times
