@@ -76,8 +76,8 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     // quarter of the spacing apart across it (RiggedSimple's 4.6 by 0.2 tube triangles had
     // points about 0.01 apart around the tube and 0.3 apart along it, docs/characters.md,
     // "Slivers sampled as far apart across as along"): rows parallel to its longest edge, at
-    // most `spacing` apart, each with points spaced like the rows; none inside where it is
-    // narrower than twice the spacing (its edges carry samples).
+    // most `spacing` apart, each with points at most `spacing` apart; none inside where it is
+    // no higher than the spacing (its edges carry samples).
     const int n_rows = std::clamp(static_cast<int>(std::ceil(height / spacing)), 1, 64);
     rows[f] = n_rows;
     base_corner[f] = k0;

@@ -17,14 +17,14 @@ namespace dermis::character {
 /// Extra data points on the triangles, so the surface follows the source between its
 /// vertices: inside every triangle longer than twice `spacing`, a barycentric grid of about
 /// `spacing`, or on a sliver (less than a quarter as high as long) rows parallel to its longest
-/// edge at most `spacing` apart, each with points spaced like the rows (a grid would pack its
+/// edge at most `spacing` apart, each with points at most `spacing` apart (a grid would pack its
 /// points across the sliver as many times closer as it is narrower); and points about
 /// `spacing` apart along every edge longer than that (the vertices are data already). Edges where
 /// the source turns sharply (boundaries, and creases whose dihedral angle exceeds `crease_angle`
 /// radians) get `crease_factor` times as many: the smooth domain surface rounds a crease, and only
 /// data on the crease line ask the displacement to follow it (docs/characters.md, "Where the
-/// distances are"). With `crease_rows`, rows of points beside those edges fill the gap to the grid
-/// of a large triangle (area_samples.cpp).
+/// distances are"). With `crease_rows`, rows of points beside those edges fill the gap to the
+/// samples inside a triangle longer than twice `spacing`, a sliver's included (area_samples.cpp).
 ///
 /// An edge in `smooth_edges` (sorted (a, b), a < b) is never sharp: the source shades it smooth.
 ///
