@@ -518,6 +518,38 @@ TEST_CASE("character: support rows beside a cap's rim sharpen it", "[heavy]") {
   CHECK(s.message().find("crease_support") != std::string::npos);
 }
 
+TEST_CASE("character: sample densities out of range are refused with their name") {
+  // A spacing thousands of times finer than the control mesh's edge would ask for more points
+  // than any fit can hold; not a number, for none at all.
+  const Asset box = LowPolyBox();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double v : {-1.0, 65.0, 1e9, nan, inf}) {
+    CharacterFitOptions bad;
+    bad.samples_per_control_edge = v;
+    Character c;
+    const Status s = FitCharacter(box, bad, &c, nullptr);
+    CHECK(s.code() == StatusCode::kInvalidInput);
+    CHECK(s.message().find("samples_per_control_edge") != std::string::npos);
+    bad = CharacterFitOptions();
+    bad.crease_samples = v;
+    const Status t = FitCharacter(box, bad, &c, nullptr);
+    CHECK(t.code() == StatusCode::kInvalidInput);
+    CHECK(t.message().find("crease_samples") != std::string::npos);
+  }
+  // The ends of the ranges are taken: no samples (the vertices only), and creases with 64
+  // times as many samples as the rest.
+  CharacterFitOptions none;
+  none.fit.threads = 2;
+  none.samples_per_control_edge = 0.0;
+  Character c;
+  CHECK(FitCharacter(box, none, &c, nullptr).ok());
+  CharacterFitOptions dense_creases;
+  dense_creases.fit.threads = 2;
+  dense_creases.crease_samples = 64.0;
+  CHECK(FitCharacter(box, dense_creases, &c, nullptr).ok());
+}
+
 TEST_CASE("character: the flat sides of a low-poly box come out flat, not rippled") {
   // Away from its edges each side of the box is flat, so the lod surface's normal there is the
   // side's axis, independently of the fit. Ripples of the displacement between the samples

@@ -9,6 +9,17 @@
 #include <utility>
 
 namespace dermis::character {
+namespace {
+
+/// ceil(length / step) segments, at most `cap` (0 for a length or step that is not a number):
+/// counted in double, so no spacing, however fine, overflows the int.
+int Segments(double length, double step, int cap) {
+  const double n = std::ceil(length / step);
+  if (n >= static_cast<double>(cap)) return cap;
+  return n > 0.0 ? static_cast<int>(n) : 0;
+}
+
+}  // namespace
 
 std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& shading,
                               const std::vector<std::array<std::uint32_t, 2>>& smooth_edges,
@@ -61,7 +72,7 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     if (!(height < 0.25 * longest)) {
       // A barycentric grid: its points are longest / n_grid <= spacing apart along the longest
       // edge and about as far apart along the others.
-      const int n_grid = std::min(64, static_cast<int>(std::ceil(longest / spacing)));
+      const int n_grid = Segments(longest, spacing, 64);
       grid[f] = n_grid;
       for (int i = 1; i < n_grid; ++i) {
         for (int j = 1; i + j < n_grid; ++j) {
@@ -78,14 +89,14 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     // "Slivers sampled as far apart across as along"): rows parallel to its longest edge, at
     // most `spacing` apart, each with points at most `spacing` apart; none inside where it is
     // no higher than the spacing (its edges carry samples).
-    const int n_rows = std::clamp(static_cast<int>(std::ceil(height / spacing)), 1, 64);
+    const int n_rows = std::max(1, Segments(height, spacing, 64));
     rows[f] = n_rows;
     base_corner[f] = k0;
     for (int r = 1; r < n_rows; ++r) {
       const double t = double(r) / n_rows;
       // The row from (1 - t) p[k0] + t p[k2] to (1 - t) p[k1] + t p[k2]; its ends are on the
       // other edges, which have samples of their own.
-      const int n_row = std::min(128, static_cast<int>(std::ceil((1.0 - t) * longest / spacing)));
+      const int n_row = Segments((1.0 - t) * longest, spacing, 128);
       for (int i = 1; i < n_row; ++i) {
         const double s = double(i) / n_row;
         double w[3];
@@ -106,7 +117,7 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     }
     const Vec3 &a = mesh.positions[e.first.first], &b = mesh.positions[e.first.second];
     const double h = sharp ? spacing / std::max(1.0, crease_factor) : spacing;
-    const int n_edge = std::min(128, static_cast<int>(std::ceil(glm::length(b - a) / h)));
+    const int n_edge = Segments(glm::length(b - a), h, 128);
     // On the shading surface, which keeps a hard edge straight and curves a smooth one alike
     // from both sides.
     const std::size_t f0 = static_cast<std::size_t>(e.second[0]);
@@ -144,10 +155,10 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
       const double gap = n_grid > 0     ? height / n_grid
                          : longest_edge ? height / n_rows
                                         : std::min(spacing, height);
-      for (int r = 1; r * h < gap; ++r) {
+      for (int r = 1; r <= 64 && r * h < gap; ++r) {
         const double t = r * h / height;
         const Vec3 p = a + t * (c - a), q = b + t * (c - b);
-        const int n_row = std::min(128, static_cast<int>(std::ceil(glm::length(q - p) / spacing)));
+        const int n_row = Segments(glm::length(q - p), spacing, 128);
         for (int i = 0; i <= n_row; ++i) {
           const double s = double(i) / std::max(1, n_row);
           // (1 - s) p + s q in the face's barycentric weights.

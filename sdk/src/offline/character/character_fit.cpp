@@ -704,6 +704,17 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
         "character fit: shading_shape must be negative (chosen per part) or in [0, 1], not " +
         std::to_string(options.shading_shape));
   }
+  // The samples' densities: a spacing thousands of times finer than the control mesh's edge
+  // (or not a number) would ask for more points than any fit can hold.
+  if (!(options.samples_per_control_edge >= 0.0 && options.samples_per_control_edge <= 64.0)) {
+    return Status::InvalidInput(
+        "character fit: samples_per_control_edge must be in [0, 64] (0: vertices only), not " +
+        std::to_string(options.samples_per_control_edge));
+  }
+  if (!(options.crease_samples >= 0.0 && options.crease_samples <= 64.0)) {
+    return Status::InvalidInput("character fit: crease_samples must be in [0, 64], not " +
+                                std::to_string(options.crease_samples));
+  }
   if (!(options.low_poly_crease_angle >= 0.0 && options.low_poly_crease_angle < 1.5)) {
     return Status::InvalidInput(
         "character fit: low_poly_crease_angle must be in [0, 1.5) radians (0: off), not " +

@@ -71,11 +71,12 @@ struct CharacterFitOptions {
   /// Data points inside the triangles, about the control mesh's mean edge (sqrt(area / control
   /// vertices), the count asked for) divided by this apart: a barycentric grid, or rows along a
   /// sliver (less than a quarter as high as long), so the surface follows the source between
-  /// its vertices. 0: vertices only.
+  /// its vertices. 0: vertices only; at most 64 (FitCharacter refuses more).
   double samples_per_control_edge = 2.0;
   /// Points along the source's edges are spaced like the grid inside its triangles; along its
   /// boundaries and creases (a dihedral angle above crease_angle, radians) crease_samples times
-  /// closer, so the displacement follows the crease the smooth domain surface rounds.
+  /// closer (in [0, 64]; below 1 as 1), so the displacement follows the crease the smooth domain
+  /// surface rounds.
   double crease_angle = 0.5;
   double crease_samples = 2.0;
   /// Inside a triangle large enough for its own grid of samples, rows of points parallel to
