@@ -30,8 +30,8 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
   const std::size_t nf = static_cast<std::size_t>(mesh.num_faces());
   std::vector<Vec3> normal(nf);
   // Segments per edge of each triangle's grid of samples (0: too small for a grid), or, for a
-  // sliver, its rows (below) and the corner its longest edge starts from.
-  std::vector<int> grid(nf, 0), rows(nf, 0), base_corner(nf, 0);
+  // sliver, its rows (below) and the corner opposite its longest edge.
+  std::vector<int> grid(nf, 0), rows(nf, 0), apex(nf, 0);
   std::map<std::pair<Index, Index>, std::vector<Index>> edges;
   const double cos_crease = std::cos(crease_angle);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
@@ -49,6 +49,13 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
   // The point at barycentric weights w of face f (w[k] for its k-th corner).
   auto at = [&](std::size_t f, const double w[3]) {
     return shading.Point(static_cast<Index>(f), w);
+  };
+  // The point of face f at s along the row t of the way from its edge (corners ka, kb) to its
+  // corner kc: (1 - t) ((1 - s) p_ka + s p_kb) + t p_kc.
+  auto on_row = [&](std::size_t f, int ka, int kb, int kc, double s, double t) {
+    double w[3];
+    w[ka] = (1.0 - s) * (1.0 - t), w[kb] = s * (1.0 - t), w[kc] = t;
+    return at(f, w);
   };
   auto corner = [&](Index f, Index vertex) {
     const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
@@ -91,18 +98,13 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     // no higher than the spacing (its edges carry samples).
     const int n_rows = std::max(1, Segments(height, spacing, 64));
     rows[f] = n_rows;
-    base_corner[f] = k0;
+    apex[f] = k2;
     for (int r = 1; r < n_rows; ++r) {
       const double t = double(r) / n_rows;
       // The row from (1 - t) p[k0] + t p[k2] to (1 - t) p[k1] + t p[k2]; its ends are on the
       // other edges, which have samples of their own.
       const int n_row = Segments((1.0 - t) * longest, spacing, 128);
-      for (int i = 1; i < n_row; ++i) {
-        const double s = double(i) / n_row;
-        double w[3];
-        w[k0] = (1.0 - s) * (1.0 - t), w[k1] = s * (1.0 - t), w[k2] = t;
-        out.push_back(at(f, w));
-      }
+      for (int i = 1; i < n_row; ++i) out.push_back(on_row(f, k0, k1, k2, double(i) / n_row, t));
     }
   }
   for (const auto& e : edges) {
@@ -148,23 +150,18 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
       const Vec3& c = mesh.positions[v[kc]];
       const double base = glm::length(b - a);
       const double height = base > 0.0 ? glm::length(glm::cross(b - a, c - a)) / base : 0.0;
-      // A sliver's first row is height / n_rows from its longest edge; from its other edges
-      // its nearest points, inside or on its other edges, are at most `spacing` away.
-      const bool longest_edge = (fa == base_corner[fs] && fb == (base_corner[fs] + 1) % 3) ||
-                                (fb == base_corner[fs] && fa == (base_corner[fs] + 1) % 3);
-      const double gap = n_grid > 0     ? height / n_grid
-                         : longest_edge ? height / n_rows
-                                        : std::min(spacing, height);
+      // A sliver's first row is height / n_rows from its longest edge (the one opposite its
+      // apex); from its other edges its nearest points, inside or on its other edges, are at
+      // most `spacing` away.
+      const double gap = n_grid > 0       ? height / n_grid
+                         : kc == apex[fs] ? height / n_rows
+                                          : std::min(spacing, height);
       for (int r = 1; r <= 64 && r * h < gap; ++r) {
         const double t = r * h / height;
         const Vec3 p = a + t * (c - a), q = b + t * (c - b);
         const int n_row = Segments(glm::length(q - p), spacing, 128);
         for (int i = 0; i <= n_row; ++i) {
-          const double s = double(i) / std::max(1, n_row);
-          // (1 - s) p + s q in the face's barycentric weights.
-          double w[3] = {0.0, 0.0, 0.0};
-          w[fa] = (1.0 - s) * (1.0 - t), w[fb] = s * (1.0 - t), w[kc] = t;
-          out.push_back(at(static_cast<std::size_t>(f), w));
+          out.push_back(on_row(fs, fa, fb, kc, double(i) / std::max(1, n_row), t));
         }
       }
     }
