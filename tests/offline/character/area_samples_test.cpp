@@ -189,4 +189,99 @@ TEST_CASE("character samples: a triangle that is no sliver keeps its barycentric
   CHECK(LargestHole(a, b, c, all) < 0.6);  // 1 / sqrt(3): a lattice triangle's centre
 }
 
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// A strip of `sides` long quads (each split into two slivers along a diagonal), 10 long along
+/// z and `width` wide: wrapped round a prism of that many sides whose sides are `width` wide
+/// (`bent`), or flat in the plane y = 0 (open at both sides). Vertices shared.
+PolygonMesh SliverStrip(int sides, double width, bool bent) {
+  PolygonMesh mesh;
+  const double radius = 0.5 * width / std::sin(kPi / sides);
+  const int columns = bent ? sides : sides + 1;
+  for (int row = 0; row < 2; ++row) {
+    for (int k = 0; k < columns; ++k) {
+      const double a = 2.0 * kPi * k / sides;
+      mesh.positions.push_back(bent ? Vec3(radius * std::cos(a), radius * std::sin(a), 10.0 * row)
+                                    : Vec3(width * k, 0.0, 10.0 * row));
+    }
+  }
+  mesh.face_offsets = {0};
+  for (int k = 0; k < sides; ++k) {
+    const Index a = static_cast<Index>(k), b = static_cast<Index>((k + 1) % columns);
+    const Index c = b + static_cast<Index>(columns), d = a + static_cast<Index>(columns);
+    mesh.AddFace({a, b, c});
+    mesh.AddFace({a, c, d});
+  }
+  return mesh;
+}
+
+/// The samples on the segment from p to q (within 1e-9 of it, ends excluded), as fractions of
+/// the way from p, sorted.
+std::vector<double> OnSegment(const Vec3& p, const Vec3& q, const std::vector<Vec3>& points) {
+  std::vector<double> out;
+  const Vec3 d = q - p;
+  for (const Vec3& x : points) {
+    const double t = glm::dot(x - p, d) / glm::dot(d, d);
+    if (t > 1e-9 && t < 1.0 - 1e-9 && glm::length(x - (p + t * d)) < 1e-9) out.push_back(t);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("character samples: along a curved sliver, points come as close as its turn asks") {
+  // A prism of 16 sides 0.4 wide (the sides turn by 2 pi / 16 = 0.393 radians from one to the
+  // next), 10 long in one row of quads: 32 slivers 0.4 high over their sides, spacing 2. With
+  // a turn of 0.25 radians per sample, the spacing along them is 0.25 x 0.4 / 0.393 = 0.255:
+  // 39 points on each 10-long side (ceil(10 / 0.255) = 40 segments) where the spacing alone
+  // gives 4 (5 segments).
+  const int sides = 16;
+  const double width = 0.4, turn = 0.25;
+  const PolygonMesh bent = SliverStrip(sides, width, true);
+  ShadingSurface flat;
+  flat.Build(bent, {}, 0.0, 0.0);
+  const std::vector<Vec3> plain = character::AreaSamples(bent, flat, {}, 2.0, 0.5, 1.0, false);
+  CHECK(character::AreaSamples(bent, flat, {}, 2.0, 0.5, 1.0, false, 0.0) == plain);
+  const std::vector<Vec3> closer =
+      character::AreaSamples(bent, flat, {}, 2.0, 0.5, 1.0, false, turn);
+  const double step = turn * width / (2.0 * kPi / sides);
+  const int segments = static_cast<int>(std::ceil(10.0 / step));
+  for (int k = 0; k < sides; ++k) {
+    const Vec3& p = bent.positions[static_cast<std::size_t>(k)];
+    const Vec3& q = bent.positions[static_cast<std::size_t>(k + sides)];
+    CHECK(OnSegment(p, q, plain).size() == 4);
+    const std::vector<double> t = OnSegment(p, q, closer);
+    CHECK(static_cast<int>(t.size()) == segments - 1);
+    double gap = t.empty() ? 1.0 : std::max(t.front(), 1.0 - t.back());
+    for (std::size_t i = 1; i < t.size(); ++i) gap = std::max(gap, t[i] - t[i - 1]);
+    CHECK(10.0 * gap <= step + 1e-9);
+  }
+  // The diagonals (between two faces in one plane: no turn) take their faces' spacing too.
+  const std::vector<double> diagonal =
+      OnSegment(bent.positions[0], bent.positions[sides + 1], closer);
+  CHECK(static_cast<int>(diagonal.size()) ==
+        static_cast<int>(
+            std::ceil(glm::length(bent.positions[sides + 1] - bent.positions[0]) / step)) -
+            1);
+}
+
+TEST_CASE("character samples: flat slivers, and curved ones across creases, keep the spacing") {
+  // The same slivers in a plane do not turn; round the prism with a crease angle below their
+  // turn (0.3 < 0.393 radians) every side is a crease, whose samples follow crease_samples.
+  const PolygonMesh strip = SliverStrip(16, 0.4, false), bent = SliverStrip(16, 0.4, true);
+  ShadingSurface flat_strip, flat_bent;
+  flat_strip.Build(strip, {}, 0.0, 0.0);
+  flat_bent.Build(bent, {}, 0.0, 0.0);
+  CHECK(character::AreaSamples(strip, flat_strip, {}, 2.0, 0.5, 1.0, false, 0.25) ==
+        character::AreaSamples(strip, flat_strip, {}, 2.0, 0.5, 1.0, false));
+  CHECK(character::AreaSamples(bent, flat_bent, {}, 2.0, 0.3, 1.0, false, 0.25) ==
+        character::AreaSamples(bent, flat_bent, {}, 2.0, 0.3, 1.0, false));
+  // Below the crease angle the same prism's sides do turn (the test above).
+  CHECK(character::AreaSamples(bent, flat_bent, {}, 2.0, 0.5, 1.0, false, 0.25).size() >
+        character::AreaSamples(bent, flat_bent, {}, 2.0, 0.5, 1.0, false).size());
+}
+
 }  // namespace dermis

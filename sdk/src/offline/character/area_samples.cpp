@@ -24,7 +24,7 @@ int Segments(double length, double step, int cap) {
 std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& shading,
                               const std::vector<std::array<std::uint32_t, 2>>& smooth_edges,
                               double spacing, double crease_angle, double crease_factor,
-                              bool crease_rows) {
+                              bool crease_rows, double turn_per_sample) {
   std::vector<Vec3> out;
   if (!(spacing > 0.0)) return out;
   const std::size_t nf = static_cast<std::size_t>(mesh.num_faces());
@@ -44,6 +44,61 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     for (int k = 0; k < 3; ++k) {
       const Index x = v[k], y = v[(k + 1) % 3];
       edges[{std::min(x, y), std::max(x, y)}].push_back(f);
+    }
+  }
+  // Whether an edge (its vertices, its faces) is sharp: a boundary, or a dihedral angle above
+  // crease_angle that the source does not shade smooth.
+  auto is_sharp = [&](const std::pair<Index, Index>& ends, const std::vector<Index>& faces) {
+    if (faces.size() != 2) return true;
+    return glm::dot(normal[static_cast<std::size_t>(faces[0])],
+                    normal[static_cast<std::size_t>(faces[1])]) < cos_crease &&
+           !std::binary_search(
+               smooth_edges.begin(), smooth_edges.end(),
+               std::array<std::uint32_t, 2>{static_cast<std::uint32_t>(ends.first),
+                                            static_cast<std::uint32_t>(ends.second)});
+  };
+  // Each face's spacing: `spacing`, or closer on a sliver where the part curves (below).
+  std::vector<double> local(nf, spacing);
+  if (turn_per_sample > 0.0) {
+    // A sliver's width and its neighbour's, across the smooth edge they share, turn the normal
+    // by the angle between their faces: the part's curvature there is about that angle over
+    // their mean width (RiggedSimple's tube: 11.25 degrees across facets 0.09 to 0.2 wide, a
+    // radius of 0.45 to 1). The remesh's sizing keeps its control edges within a turn of
+    // SizingOptions::max_turn (halved by the split into quads), finer there than the count's
+    // edge the spacing comes from; along the sliver the samples come as close, at most
+    // turn_per_sample of turn apart (docs/characters.md, "Samples as close as the control
+    // edges along curved slivers"). The counts' caps (64 rows, 128 points on a row or an edge)
+    // bound the points however sharply it turns.
+    std::vector<std::uint8_t> sliver(nf, 0);
+    for (std::size_t f = 0; f < nf; ++f) {
+      const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
+      const Vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
+      double longest = 0.0;
+      for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(p[(k + 1) % 3] - p[k]));
+      const double height =
+          longest > 0.0 ? glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) / longest : 0.0;
+      sliver[f] = longest > 2.0 * spacing && height < 0.25 * longest;
+    }
+    for (const auto& e : edges) {
+      if (is_sharp(e.first, e.second)) continue;
+      const std::size_t f = static_cast<std::size_t>(e.second[0]);
+      const std::size_t g = static_cast<std::size_t>(e.second[1]);
+      // A face without area has no normal to turn from.
+      if ((!sliver[f] && !sliver[g]) || normal[f] == Vec3(0.0) || normal[g] == Vec3(0.0)) continue;
+      const double angle = std::acos(std::clamp(glm::dot(normal[f], normal[g]), -1.0, 1.0));
+      const Vec3 &a = mesh.positions[e.first.first], &b = mesh.positions[e.first.second];
+      const double length = glm::length(b - a);
+      if (!(angle > 0.0) || !(length > 0.0)) continue;
+      // A face's height over the edge: twice its area over the edge's length.
+      auto height = [&](std::size_t h) {
+        const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(h)]];
+        return glm::length(glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
+                                      mesh.positions[v[2]] - mesh.positions[v[0]])) /
+               length;
+      };
+      const double step = turn_per_sample * 0.5 * (height(f) + height(g)) / angle;
+      if (sliver[f]) local[f] = std::min(local[f], step);
+      if (sliver[g]) local[g] = std::min(local[g], step);
     }
   }
   // The point at barycentric weights w of face f (w[k] for its k-th corner).
@@ -96,29 +151,27 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     // "Slivers sampled as far apart across as along"): rows parallel to its longest edge, at
     // most `spacing` apart, each with points at most `spacing` apart; none inside where it is
     // no higher than the spacing (its edges carry samples).
-    const int n_rows = std::max(1, Segments(height, spacing, 64));
+    const double step = local[f];
+    const int n_rows = std::max(1, Segments(height, step, 64));
     rows[f] = n_rows;
     apex[f] = k2;
     for (int r = 1; r < n_rows; ++r) {
       const double t = double(r) / n_rows;
       // The row from (1 - t) p[k0] + t p[k2] to (1 - t) p[k1] + t p[k2]; its ends are on the
       // other edges, which have samples of their own.
-      const int n_row = Segments((1.0 - t) * longest, spacing, 128);
+      const int n_row = Segments((1.0 - t) * longest, step, 128);
       for (int i = 1; i < n_row; ++i) out.push_back(on_row(f, k0, k1, k2, double(i) / n_row, t));
     }
   }
   for (const auto& e : edges) {
-    bool sharp = e.second.size() != 2;
-    if (!sharp) {
-      sharp = glm::dot(normal[static_cast<std::size_t>(e.second[0])],
-                       normal[static_cast<std::size_t>(e.second[1])]) < cos_crease &&
-              !std::binary_search(
-                  smooth_edges.begin(), smooth_edges.end(),
-                  std::array<std::uint32_t, 2>{static_cast<std::uint32_t>(e.first.first),
-                                               static_cast<std::uint32_t>(e.first.second)});
-    }
+    const bool sharp = is_sharp(e.first, e.second);
     const Vec3 &a = mesh.positions[e.first.first], &b = mesh.positions[e.first.second];
-    const double h = sharp ? spacing / std::max(1.0, crease_factor) : spacing;
+    // The closer of its faces' spacings (a curved sliver's, above).
+    double edge_spacing = spacing;
+    for (Index f : e.second)
+      edge_spacing = std::min(edge_spacing, local[static_cast<std::size_t>(f)]);
+    const double h =
+        sharp ? std::min(edge_spacing, spacing / std::max(1.0, crease_factor)) : edge_spacing;
     const int n_edge = Segments(glm::length(b - a), h, 128);
     // On the shading surface, which keeps a hard edge straight and curves a smooth one alike
     // from both sides.
@@ -152,14 +205,14 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
       const double height = base > 0.0 ? glm::length(glm::cross(b - a, c - a)) / base : 0.0;
       // A sliver's first row is height / n_rows from its longest edge (the one opposite its
       // apex); from its other edges its nearest points, inside or on its other edges, are at
-      // most `spacing` away.
+      // most its spacing away.
       const double gap = n_grid > 0       ? height / n_grid
                          : kc == apex[fs] ? height / n_rows
-                                          : std::min(spacing, height);
+                                          : std::min(local[fs], height);
       for (int r = 1; r <= 64 && r * h < gap; ++r) {
         const double t = r * h / height;
         const Vec3 p = a + t * (c - a), q = b + t * (c - b);
-        const int n_row = Segments(glm::length(q - p), spacing, 128);
+        const int n_row = Segments(glm::length(q - p), local[fs], 128);
         for (int i = 0; i <= n_row; ++i) {
           out.push_back(on_row(fs, fa, fb, kc, double(i) / std::max(1, n_row), t));
         }

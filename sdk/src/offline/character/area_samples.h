@@ -30,9 +30,17 @@ namespace dermis::character {
 ///
 /// The points lie on `shading` (the flat triangles where its shape factor is 0): the surface
 /// the source's shading normals describe, which keeps hard edges straight.
+///
+/// With `turn_per_sample` > 0 (radians), a sliver where the part curves is sampled closer: two
+/// faces that meet at an edge that is not sharp turn the normal by the angle between them across
+/// their mean height over it, and a sliver's rows, its points on them and the points on its
+/// edges come at most turn_per_sample of that turn apart (where that is closer than
+/// `spacing`). A character's low-poly part asks for it: its remesh's control edges are as short
+/// along a curved sliver (docs/characters.md, "Samples as close as the control edges along
+/// curved slivers"). 0: `spacing` everywhere.
 std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& shading,
                               const std::vector<std::array<std::uint32_t, 2>>& smooth_edges,
                               double spacing, double crease_angle, double crease_factor,
-                              bool crease_rows);
+                              bool crease_rows, double turn_per_sample = 0.0);
 
 }  // namespace dermis::character
