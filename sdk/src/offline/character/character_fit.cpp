@@ -436,9 +436,19 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   input.points = dense.positions;  // first, so point_fits[i] is vertex i's
   if (options.samples_per_control_edge > 0.0) {
     const double edge = std::sqrt(Area(dense) / fo.control_vertices);
+    // A low-poly part (its control mesh at its own resolution or finer): a long facet spans
+    // several control edges, and where the part curves the remesh's sizing keeps each within
+    // a turn of about max_turn / 2 (SizingOptions::max_turn, then the split into quads), shorter
+    // than the count's edge. A curved sliver's samples then come as many per such control edge
+    // as the spacing gives per mean edge (docs/characters.md, "Samples as close as the control
+    // edges along curved slivers"). On a denser part the facets' angles are its detail, finer
+    // than the control mesh, and say nothing of its sizing.
+    const double turn = options.max_turn > 0.0 && fo.control_vertices >= dense.num_vertices()
+                            ? options.max_turn / (2.0 * options.samples_per_control_edge)
+                            : 0.0;
     const std::vector<Vec3> extra = character::AreaSamples(
         dense, shading, smooth_edges, edge / options.samples_per_control_edge, options.crease_angle,
-        options.crease_samples, options.crease_rows);
+        options.crease_samples, options.crease_rows, turn);
     input.points.insert(input.points.end(), extra.begin(), extra.end());
   }
   input.mesh = &dense;

@@ -67,11 +67,16 @@ struct CharacterFitOptions {
   double max_deviation = 1.0;
   /// Every edge of the remeshed triangle mesh turns the normal by at most about this many
   /// radians (SizingOptions::max_turn), whatever the count: a limb keeps enough edges around.
+  /// On a low-poly part (its control mesh at its own resolution or finer) a sliver where the
+  /// part curves also gets its samples a turn of max_turn / (2 samples_per_control_edge)
+  /// apart, as close as the control edges this makes there (docs/characters.md, "Samples as
+  /// close as the control edges along curved slivers"). <= 0: no bound, and no such samples.
   double max_turn = 1.0;
   /// Data points inside the triangles, about the control mesh's mean edge (sqrt(area / control
   /// vertices), the count asked for) divided by this apart: a barycentric grid, or rows along a
-  /// sliver (less than a quarter as high as long), so the surface follows the source between
-  /// its vertices. 0: vertices only; at most 64 (FitCharacter refuses more).
+  /// sliver (less than a quarter as high as long; closer on a low-poly part's curved slivers,
+  /// max_turn), so the surface follows the source between its vertices. 0: vertices only; at
+  /// most 64 (FitCharacter refuses more).
   double samples_per_control_edge = 2.0;
   /// Points along the source's edges are spaced like the grid inside its triangles; along its
   /// boundaries and creases (a dihedral angle above crease_angle, radians) crease_samples times
