@@ -623,16 +623,15 @@ TEST_CASE("character: heavier vertices keep the bound export's error under the s
 namespace dermis {
 namespace {
 
-/// An open tube of `sides` flat sides round the unit circle (z from 0 to 3, 6 rows of quads),
-/// shaded smooth (one radial normal per vertex, as an artist's low-poly limb) or flat (each
-/// triangle its own vertices and normal).
-Asset LowPolyTube(int sides, bool smooth) {
+/// An open tube of `sides` flat sides round the unit circle (z from 0 to rows x row_height; by
+/// default 6 rows of quads 0.5 high), shaded smooth (one radial normal per vertex, as an
+/// artist's low-poly limb) or flat (each triangle its own vertices and normal).
+Asset LowPolyTube(int sides, bool smooth, int rows = 6, float row_height = 0.5f) {
   AssetPrimitive prim;
-  const int rows = 6;
   auto point = [&](int k, int row) {
     const double a = 2.0 * 3.14159265358979323846 * (k % sides) / sides;  // one seam vertex
     return glm::vec3(static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a)),
-                     0.5f * static_cast<float>(row));
+                     row_height * static_cast<float>(row));
   };
   auto radial = [&](int k) {
     const glm::vec3 p = point(k, 0);
@@ -910,35 +909,10 @@ TEST_CASE("character: edges shaded smooth are not creases but hard edges are") {
   CHECK(creases(flat, true) == 48);
 }
 
-namespace {
-
-/// An open tube of 32 flat sides round the unit circle, 10 long (z from 0 to 10) in one row of
-/// quads: 64 slivers 0.196 wide and 10 long, shaded smooth (one radial normal per vertex), as
-/// RiggedSimple's tube is.
-Asset SliverTube() {
-  AssetPrimitive prim;
-  const int sides = 32;
-  auto point = [&](int k, float z) {
-    const double a = 2.0 * 3.14159265358979323846 * (k % sides) / sides;
-    return glm::vec3(static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a)), z);
-  };
-  for (int k = 0; k < sides; ++k) {
-    const glm::vec3 q[4] = {point(k, 0.0f), point(k + 1, 0.0f), point(k + 1, 10.0f),
-                            point(k, 10.0f)};
-    const int corners[6] = {0, 1, 2, 0, 2, 3};
-    for (int c : corners) {
-      prim.indices.push_back(static_cast<std::uint32_t>(prim.positions.size()));
-      prim.positions.push_back(q[c]);
-      prim.normals.push_back(glm::vec3(q[c].x, q[c].y, 0.0f));
-    }
-  }
-  return SinglePrimitiveAsset(prim, "sliver_tube", "tube");
-}
-
-}  // namespace
-
 TEST_CASE("character: a tube of long smooth-shaded slivers comes out round between its rings") {
-  const Asset tube = SliverTube();
+  // 32 flat sides round the unit circle, 10 long in one row of quads: 64 slivers 0.196 wide
+  // and 10 long, shaded smooth, as RiggedSimple's tube is.
+  const Asset tube = LowPolyTube(32, true, 1, 10.0f);
   REQUIRE(ValidateAsset(tube).ok());
   CharacterFitOptions options;
   options.fit.threads = 2;
