@@ -7,6 +7,7 @@
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -260,12 +261,42 @@ TEST_CASE("character samples: along a curved sliver, points come as close as its
     CHECK(10.0 * gap <= step + 1e-9);
   }
   // The diagonals (between two faces in one plane: no turn) take their faces' spacing too.
+  const double diagonal_length = glm::length(bent.positions[sides + 1] - bent.positions[0]);
   const std::vector<double> diagonal =
       OnSegment(bent.positions[0], bent.positions[sides + 1], closer);
   CHECK(static_cast<int>(diagonal.size()) ==
-        static_cast<int>(
-            std::ceil(glm::length(bent.positions[sides + 1] - bent.positions[0]) / step)) -
-            1);
+        static_cast<int>(std::ceil(diagonal_length / step)) - 1);
+  // Inside each sliver (0.4 x 10 / 10.008 high over its diagonal): its height in 2 at that
+  // step, one row half way, half the diagonal long; on each end ring's edges (0.4, sharp: the
+  // boundary) one point. Every point counted once.
+  const double height = width * 10.0 / diagonal_length;
+  REQUIRE(static_cast<int>(std::ceil(height / step)) == 2);
+  const int row = static_cast<int>(std::ceil(0.5 * diagonal_length / step)) - 1;
+  CHECK(static_cast<int>(closer.size()) == 2 * sides * row + sides * (segments - 1) +
+                                               static_cast<int>(diagonal.size()) * sides +
+                                               2 * sides);
+  // One quad wound the other way (its normals flipped), its edges shaded smooth (so not
+  // creases whatever its normals), turns the same: the same count.
+  PolygonMesh flipped = bent;
+  for (int f = 0; f < 2; ++f) {
+    Index* v = &flipped.face_vertices[flipped.face_offsets[static_cast<Index>(f)]];
+    std::swap(v[1], v[2]);
+  }
+  std::vector<std::array<std::uint32_t, 2>> smooth;
+  for (int k = 0; k < sides; ++k) {
+    const auto u = static_cast<std::uint32_t>(k);
+    for (const auto w : {static_cast<std::uint32_t>(k + sides),
+                         static_cast<std::uint32_t>((k + 1) % sides + sides)}) {
+      smooth.push_back({std::min(u, w), std::max(u, w)});
+    }
+  }
+  std::sort(smooth.begin(), smooth.end());
+  ShadingSurface flat_flipped;
+  flat_flipped.Build(flipped, {}, 0.0, 0.0);
+  CHECK(character::AreaSamples(bent, flat, smooth, 2.0, 0.5, 1.0, false, turn).size() ==
+        closer.size());
+  CHECK(character::AreaSamples(flipped, flat_flipped, smooth, 2.0, 0.5, 1.0, false, turn).size() ==
+        closer.size());
 }
 
 TEST_CASE("character samples: flat slivers, and curved ones across creases, keep the spacing") {

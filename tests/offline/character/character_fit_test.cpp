@@ -909,7 +909,7 @@ TEST_CASE("character: edges shaded smooth are not creases but hard edges are") {
   CHECK(creases(flat, true) == 48);
 }
 
-TEST_CASE("character: a tube of long smooth-shaded slivers comes out round between its rings") {
+TEST_CASE("character: a tube of long smooth-shaded slivers comes out round along its length") {
   // 32 flat sides round the unit circle, 10 long in one row of quads: 64 slivers 0.196 wide
   // and 10 long, shaded smooth, as RiggedSimple's tube is.
   const Asset tube = LowPolyTube(32, true, 1, 10.0f);

@@ -33,6 +33,11 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
   // sliver, its rows (below) and the corner opposite its longest edge.
   std::vector<int> grid(nf, 0), rows(nf, 0), apex(nf, 0);
   std::map<std::pair<Index, Index>, std::vector<Index>> edges;
+  struct Shape {
+    int k0 = 0;
+    double longest = 0.0, height = 0.0;
+  };
+  std::vector<Shape> shape(nf);
   const double cos_crease = std::cos(crease_angle);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     const std::size_t fi = static_cast<std::size_t>(f);
@@ -45,7 +50,23 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
       const Index x = v[k], y = v[(k + 1) % 3];
       edges[{std::min(x, y), std::max(x, y)}].push_back(f);
     }
+    // Its longest edge (from corner k0) and its height over it.
+    const Vec3 p[3] = {a, b, c};
+    Shape& sh = shape[fi];
+    for (int k = 0; k < 3; ++k) {
+      const double l = glm::length(p[(k + 1) % 3] - p[k]);
+      if (l > sh.longest) sh.longest = l, sh.k0 = k;
+    }
+    if (sh.longest > 0.0) {
+      const int k1 = (sh.k0 + 1) % 3, k2 = (sh.k0 + 2) % 3;
+      sh.height = glm::length(glm::cross(p[k1] - p[sh.k0], p[k2] - p[sh.k0])) / sh.longest;
+    }
   }
+  // A triangle with samples inside (longer than twice the spacing) is a sliver when it is less
+  // than a quarter as high as its longest edge: rows along that edge (below), not a grid.
+  auto is_sliver = [&](std::size_t f) {
+    return shape[f].longest > 2.0 * spacing && shape[f].height < 0.25 * shape[f].longest;
+  };
   // Whether an edge (its vertices, its faces) is sharp: a boundary, or a dihedral angle above
   // crease_angle that the source does not shade smooth.
   auto is_sharp = [&](const std::pair<Index, Index>& ends, const std::vector<Index>& faces) {
@@ -58,7 +79,7 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
                                             static_cast<std::uint32_t>(ends.second)});
   };
   // Each face's spacing: `spacing`, or closer on a sliver where the part curves (below).
-  std::vector<double> local(nf, spacing);
+  std::vector<double> face_spacing(nf, spacing);
   if (turn_per_sample > 0.0) {
     // A sliver's width and its neighbour's, across the smooth edge they share, turn the normal
     // by the angle between their faces: the part's curvature there is about that angle over
@@ -68,37 +89,42 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     // edge the spacing comes from; along the sliver the samples come as close, at most
     // turn_per_sample of turn apart (docs/characters.md, "Samples as close as the control
     // edges along curved slivers"). The counts' caps (64 rows, 128 points on a row or an edge)
-    // bound the points however sharply it turns.
-    std::vector<std::uint8_t> sliver(nf, 0);
-    for (std::size_t f = 0; f < nf; ++f) {
+    // bound each sliver's points however sharply it turns.
+    // Whether face f runs from vertex x to vertex y (consistently oriented neighbours run
+    // along their shared edge in opposite directions).
+    auto runs = [&](std::size_t f, Index x, Index y) {
       const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
-      const Vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
-      double longest = 0.0;
-      for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(p[(k + 1) % 3] - p[k]));
-      const double height =
-          longest > 0.0 ? glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) / longest : 0.0;
-      sliver[f] = longest > 2.0 * spacing && height < 0.25 * longest;
-    }
+      for (int k = 0; k < 3; ++k) {
+        if (v[k] == x && v[(k + 1) % 3] == y) return true;
+      }
+      return false;
+    };
     for (const auto& e : edges) {
       if (is_sharp(e.first, e.second)) continue;
       const std::size_t f = static_cast<std::size_t>(e.second[0]);
       const std::size_t g = static_cast<std::size_t>(e.second[1]);
       // A face without area has no normal to turn from.
-      if ((!sliver[f] && !sliver[g]) || normal[f] == Vec3(0.0) || normal[g] == Vec3(0.0)) continue;
-      const double angle = std::acos(std::clamp(glm::dot(normal[f], normal[g]), -1.0, 1.0));
-      const Vec3 &a = mesh.positions[e.first.first], &b = mesh.positions[e.first.second];
-      const double length = glm::length(b - a);
-      if (!(angle > 0.0) || !(length > 0.0)) continue;
-      // A face's height over the edge: twice its area over the edge's length.
-      auto height = [&](std::size_t h) {
-        const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(h)]];
+      if ((!is_sliver(f) && !is_sliver(g)) || normal[f] == Vec3(0.0) || normal[g] == Vec3(0.0)) {
+        continue;
+      }
+      // A neighbour wound the other way (its normal flipped) turns by the angle's supplement.
+      const Index x = e.first.first, y = e.first.second;
+      const Vec3 ng = runs(f, x, y) == runs(g, x, y) ? -normal[g] : normal[g];
+      const double angle =
+          std::atan2(glm::length(glm::cross(normal[f], ng)), glm::dot(normal[f], ng));
+      if (!(angle > 0.0)) continue;
+      // A face's height over the edge: twice its area over the edge's length (not zero: the
+      // faces have area).
+      const double length = glm::length(mesh.positions[y] - mesh.positions[x]);
+      auto height_over = [&](std::size_t face) {
+        const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(face)]];
         return glm::length(glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
                                       mesh.positions[v[2]] - mesh.positions[v[0]])) /
                length;
       };
-      const double step = turn_per_sample * 0.5 * (height(f) + height(g)) / angle;
-      if (sliver[f]) local[f] = std::min(local[f], step);
-      if (sliver[g]) local[g] = std::min(local[g], step);
+      const double step = turn_per_sample * 0.5 * (height_over(f) + height_over(g)) / angle;
+      if (is_sliver(f)) face_spacing[f] = std::min(face_spacing[f], step);
+      if (is_sliver(g)) face_spacing[g] = std::min(face_spacing[g], step);
     }
   }
   // The point at barycentric weights w of face f (w[k] for its k-th corner).
@@ -119,19 +145,11 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     return k;
   };
   for (std::size_t f = 0; f < nf; ++f) {
-    const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(f)]];
-    const Vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
-    int k0 = 0;
-    double longest = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const double l = glm::length(p[(k + 1) % 3] - p[k]);
-      if (l > longest) longest = l, k0 = k;
-    }
+    const int k0 = shape[f].k0;
+    const double longest = shape[f].longest, height = shape[f].height;
     if (!(longest > 2.0 * spacing)) continue;
     const int k1 = (k0 + 1) % 3, k2 = (k0 + 2) % 3;
-    // Its height over the longest edge.
-    const double height = glm::length(glm::cross(p[k1] - p[k0], p[k2] - p[k0])) / longest;
-    if (!(height < 0.25 * longest)) {
+    if (!is_sliver(f)) {
       // A barycentric grid: its points are longest / n_grid <= spacing apart along the longest
       // edge and about as far apart along the others.
       const int n_grid = Segments(longest, spacing, 64);
@@ -149,9 +167,10 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     // quarter of the spacing apart across it (RiggedSimple's 4.6 by 0.2 tube triangles had
     // points about 0.01 apart around the tube and 0.3 apart along it, docs/characters.md,
     // "Slivers sampled as far apart across as along"): rows parallel to its longest edge, at
-    // most `spacing` apart, each with points at most `spacing` apart; none inside where it is
-    // no higher than the spacing (its edges carry samples).
-    const double step = local[f];
+    // most its spacing apart (`spacing`, or closer where the part curves, above), each with
+    // points at most that far apart; none inside where it is no higher than that (its edges
+    // carry samples).
+    const double step = face_spacing[f];
     const int n_rows = std::max(1, Segments(height, step, 64));
     rows[f] = n_rows;
     apex[f] = k2;
@@ -168,8 +187,9 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     const Vec3 &a = mesh.positions[e.first.first], &b = mesh.positions[e.first.second];
     // The closer of its faces' spacings (a curved sliver's, above).
     double edge_spacing = spacing;
-    for (Index f : e.second)
-      edge_spacing = std::min(edge_spacing, local[static_cast<std::size_t>(f)]);
+    for (Index f : e.second) {
+      edge_spacing = std::min(edge_spacing, face_spacing[static_cast<std::size_t>(f)]);
+    }
     const double h =
         sharp ? std::min(edge_spacing, spacing / std::max(1.0, crease_factor)) : edge_spacing;
     const int n_edge = Segments(glm::length(b - a), h, 128);
@@ -185,7 +205,7 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     }
     if (!sharp || !crease_rows || crease_factor <= 1.0) continue;
     // The grid inside a large triangle (above) starts one grid row, height / n_grid, away from
-    // its edges, a sliver's rows up to `spacing`: beside a sharp edge that gap is up to
+    // its edges, a sliver's rows up to its spacing: beside a sharp edge that gap is up to
     // crease_factor times the spacing h along the edge, and the finest displacement levels,
     // held there only by their smoothing, overshoot the crease (RiggedSimple's cap rim,
     // docs/characters.md). Rows parallel to the sharp edge, h apart (their points spaced like
@@ -208,11 +228,11 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
       // most its spacing away.
       const double gap = n_grid > 0       ? height / n_grid
                          : kc == apex[fs] ? height / n_rows
-                                          : std::min(local[fs], height);
+                                          : std::min(face_spacing[fs], height);
       for (int r = 1; r <= 64 && r * h < gap; ++r) {
         const double t = r * h / height;
         const Vec3 p = a + t * (c - a), q = b + t * (c - b);
-        const int n_row = Segments(glm::length(q - p), local[fs], 128);
+        const int n_row = Segments(glm::length(q - p), face_spacing[fs], 128);
         for (int i = 0; i <= n_row; ++i) {
           out.push_back(on_row(fs, fa, fb, kc, double(i) / std::max(1, n_row), t));
         }

@@ -21,7 +21,8 @@ namespace dermis::character {
 /// points across the sliver as many times closer as it is narrower); and points about
 /// `spacing` apart along every edge longer than that (the vertices are data already). Edges where
 /// the source turns sharply (boundaries, and creases whose dihedral angle exceeds `crease_angle`
-/// radians) get `crease_factor` times as many: the smooth domain surface rounds a crease, and only
+/// radians) get them `crease_factor` times closer (or as close as their faces' spacing below,
+/// where that is closer): the smooth domain surface rounds a crease, and only
 /// data on the crease line ask the displacement to follow it (docs/characters.md, "Where the
 /// distances are"). With `crease_rows`, rows of points beside those edges fill the gap to the
 /// samples inside a triangle longer than twice `spacing`, a sliver's included (area_samples.cpp).
@@ -35,9 +36,10 @@ namespace dermis::character {
 /// faces that meet at an edge that is not sharp turn the normal by the angle between them across
 /// their mean height over it, and a sliver's rows, its points on them and the points on its
 /// edges come at most turn_per_sample of that turn apart (where that is closer than
-/// `spacing`). A character's low-poly part asks for it: its remesh's control edges are as short
-/// along a curved sliver (docs/characters.md, "Samples as close as the control edges along
-/// curved slivers"). 0: `spacing` everywhere.
+/// `spacing`; a neighbour wound the other way counts with its normal flipped). A character's
+/// low-poly part asks for it: its remesh's control edges are as short along a curved sliver
+/// (docs/characters.md, "Samples as close as the control edges along curved slivers"). 0:
+/// `spacing` everywhere.
 std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& shading,
                               const std::vector<std::array<std::uint32_t, 2>>& smooth_edges,
                               double spacing, double crease_angle, double crease_factor,

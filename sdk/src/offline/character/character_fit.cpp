@@ -442,7 +442,11 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     // than the count's edge. A curved sliver's samples then come as many per such control edge
     // as the spacing gives per mean edge (docs/characters.md, "Samples as close as the control
     // edges along curved slivers"). On a denser part the facets' angles are its detail, finer
-    // than the control mesh, and say nothing of its sizing.
+    // than the control mesh, and say nothing of its sizing. The samples come before the control
+    // mesh is built: the input's own quads, if the part ends with them, cross a long facet with
+    // their inserted loops, about as close. Low-poly here is at most min_control_vertices welded
+    // vertices by default, any part with vertex_ratio >= 1 (each sliver's points capped by the
+    // sampler).
     const double turn = options.max_turn > 0.0 && fo.control_vertices >= dense.num_vertices()
                             ? options.max_turn / (2.0 * options.samples_per_control_edge)
                             : 0.0;
