@@ -64,6 +64,7 @@ struct FitArgs {
   bool creases_closed = false;
   double crease_support = CharacterFitOptions{}.crease_support;
   double input_quads = CharacterFitOptions{}.input_quads;
+  double surface_gap = CharacterFitOptions{}.surface_gap;
   double low_poly_crease_angle = CharacterFitOptions{}.low_poly_crease_angle;
   bool refit = false;
   // Options given on the command line that only one kind of input takes (set at parse time):
@@ -119,6 +120,7 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
       m["crease_cut_edges"] = c.crease_cut_edges;
       m["crease_cut_vertices"] = c.crease_cut_vertices;
     }
+    if (c.surface_gap_points > 0) m["surface_gap_points"] = c.surface_gap_points;
     if (q.grown_target > 0) {
       m["grown_target"] = q.grown_target;
       m["deviation_edge_lengths"] = q.deviation;
@@ -269,6 +271,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   options_json["crease-support"] = options.crease_support;
   options_json["creases-closed"] = !options.cut_creases;
   options_json["input-quads"] = options.input_quads;
+  options_json["surface-gap"] = options.surface_gap;
   options_json["refit"] = a.refit;
   Json j;
   StartReport(&j, "dermis.fit-character/1", std::move(options_json));
@@ -342,6 +345,7 @@ int RunFitCharacter(const FitArgs& a) {
   options.cut_creases = !a.creases_closed;
   options.crease_support = a.crease_support;
   options.input_quads = a.input_quads;
+  options.surface_gap = a.surface_gap;
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit_clean_iterations = a.clean_rounds;
@@ -704,6 +708,13 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
           },
           "0|R>=1"))
       ->capture_default_str();
+  cmd->add_option("--surface-gap", args->surface_gap,
+                  "Characters: where the fitted surface is farther than this fraction of a "
+                  "part's diagonal from the source, the source's nearest points join the data "
+                  "and the part is fitted again, once (0: off; docs/characters.md, \"Where the "
+                  "surface leaves the source\")")
+      ->check(CLI::Range(0.0, 0.999))
+      ->capture_default_str();
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
@@ -721,9 +732,9 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         for (const char* name : {"--control-vertices", "--control-mesh", "--holdout"}) {
           if (cmd->count(name) > 0) args->surface_only.push_back(name);
         }
-        for (const char* name :
-             {"--control-ratio", "--shading-shape", "--shading-max-move", "--crease-smoothing",
-              "--vertex-weight", "--crease-support", "--input-quads", "--low-poly-crease-angle"}) {
+        for (const char* name : {"--control-ratio", "--shading-shape", "--shading-max-move",
+                                 "--crease-smoothing", "--vertex-weight", "--crease-support",
+                                 "--input-quads", "--low-poly-crease-angle", "--surface-gap"}) {
           if (cmd->count(name) > 0) args->character_only.push_back(name);
         }
         if (args->refit) args->character_only.push_back("--refit");  // --refit=false is fine

@@ -25,6 +25,7 @@
 #include "dermis/offline/geometry/shading_surface.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/surface/surface_evaluator.h"
+#include "surface_gap_points.h"
 
 namespace dermis {
 namespace {
@@ -372,9 +373,9 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   const bool cut = creases.hard && options.cut_creases &&
                    fo.displacement.method == DisplacementMethod::kAdaptive;
   const bool supported = creases.hard && options.crease_support < 1.0 && !cut;
-  // The part's triangles, for the moves of its control vertices below.
+  // The part's triangles, for the moves of its control vertices and the surface gaps below.
   auto tree = std::make_shared<TriangleDistanceTree>();
-  if (shading.curved() || supported) {
+  if (shading.curved() || supported || options.surface_gap > 0.0) {
     std::vector<std::uint32_t> triangles(dense.face_vertices.begin(), dense.face_vertices.end());
     if (!tree->Build(dense.positions, triangles)) tree.reset();
   }
@@ -489,6 +490,9 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   }
   Status s = FitSurface(input, fo, fitted, fr);
   if (!s.ok()) return s.message();
+  // The input and options of the fit kept so far (for the surface gaps' refit, below).
+  const FitInput* kept_input = &input;
+  FitOptions kept_options = fo;
   fr->control_mesh.crease_support_loops = support->loops;
   fr->control_mesh.crease_support_vertices = support->moved;
   fr->control_mesh.crease_cut_edges = cut_result->cut_edges;
@@ -500,6 +504,7 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     // again as a part without creases.
     s = FitSurface(plain_input, plain_options, fitted, fr);
     if (!s.ok()) return s.message();
+    kept_input = &plain_input, kept_options = plain_options;
   }
   if (plain && kept_creases) {
     // Keeping every crease as control edges sharpens low-poly, hard-edged parts but makes
@@ -527,6 +532,7 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
                     "keeping %d crease edges (of the part's scale)",
                     alt_report.error.hausdorff, fr->error.hausdorff,
                     fr->control_mesh.quality.crease_edges_kept);
+      kept_input = &plain_input, kept_options = po;
       *fitted = std::move(alt);
       *fr = std::move(alt_report);
       *kept_simplified = note;
@@ -555,9 +561,42 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
                     "the simplification's control mesh was kept: Hausdorff %.3g against the "
                     "remesh's %.3g (of the part's scale)",
                     alt_report.error.hausdorff, fr->error.hausdorff);
+      kept_input = &plain_input, kept_options = so;
       *fitted = std::move(alt);
       *fr = std::move(alt_report);
       *kept_simplified = note;
+    }
+  }
+  // The kept fit checked against the source the other way round (CharacterFitOptions::
+  // surface_gap, SurfaceGapPoints): where its surface leaves the source by more than
+  // surface_gap of the diagonal, the source's nearest points join the data and the part is
+  // fitted again with the same input and options, once, without progress (the bar has passed
+  // that fit); the refit is kept unless its two-sided Hausdorff distance is larger. After the
+  // comparisons above (they keep their decisions), before the low-poly refit's (whose own fit
+  // takes this step too).
+  const double gap = options.surface_gap * Diagonal(dense.positions);
+  if (gap > 0.0 && tree) {
+    const std::vector<Vec3> more = character::SurfaceGapPoints(*fitted, *tree, shading, gap, 4);
+    if (!more.empty()) {
+      FitInput again = *kept_input;
+      again.points.insert(again.points.end(), more.begin(), more.end());
+      if (!again.weights.empty()) again.weights.resize(again.points.size(), 1.0);
+      kept_options.progress = nullptr;
+      FittedSurface refit;
+      FitReport refit_report;
+      if (FitSurface(again, kept_options, &refit, &refit_report).ok() &&
+          !(refit_report.error.hausdorff > fr->error.hausdorff)) {
+        // What this function adds to the report (the cut, the support rows) is the same.
+        const ControlMeshInfo& was = fr->control_mesh;
+        ControlMeshInfo& now = refit_report.control_mesh;
+        now.crease_support_loops = was.crease_support_loops;
+        now.crease_support_vertices = was.crease_support_vertices;
+        now.crease_cut_edges = was.crease_cut_edges;
+        now.crease_cut_vertices = was.crease_cut_vertices;
+        now.surface_gap_points = static_cast<int>(more.size());
+        *fitted = std::move(refit);
+        *fr = std::move(refit_report);
+      }
     }
   }
   fr->control_mesh.control_fit_rounds = static_cast<int>(fr->control_fit_rounds);
@@ -717,6 +756,10 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
     return Status::InvalidInput(
         "character fit: shading_shape must be negative (chosen per part) or in [0, 1], not " +
         std::to_string(options.shading_shape));
+  }
+  if (!(options.surface_gap >= 0.0 && options.surface_gap < 1.0)) {
+    return Status::InvalidInput("character fit: surface_gap must be in [0, 1) (0: off), not " +
+                                std::to_string(options.surface_gap));
   }
   // The samples' densities: a spacing thousands of times finer than the control mesh's edge
   // (or not a number) would ask for more points than any fit can hold.

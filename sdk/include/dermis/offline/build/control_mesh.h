@@ -72,6 +72,9 @@ struct ControlMeshInfo {
   /// of this control mesh (CharacterFitOptions::crease_angle, or low_poly_crease_angle where
   /// that fit was kept; 0 where the control mesh keeps no creases by design).
   double crease_angle_deg = 0.0;
+  /// Characters: the source points added where the fitted surface left the source, before the
+  /// part was fitted again (CharacterFitOptions::surface_gap; 0: none, or not checked).
+  int surface_gap_points = 0;
 };
 
 /// Builds a control mesh from a polygon mesh (faces are fan-triangulated): welds vertices
