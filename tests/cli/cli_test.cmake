@@ -160,6 +160,10 @@ expect_run(2 "--creases-closed applies to a character" ${DERMIS} fit ${WORK}/den
            -o ${WORK}/bad_refit.dsurf --creases-closed)
 expect_run(2 "--low-poly-crease-angle applies to a character" ${DERMIS} fit
            ${WORK}/dense_torus.obj -o ${WORK}/bad_refit.dsurf --low-poly-crease-angle 0.2)
+expect_run(2 "--surface-gap applies to a character" ${DERMIS} fit ${WORK}/dense_torus.obj
+           -o ${WORK}/bad_refit.dsurf --surface-gap 0.001)
+expect_run(2 "--surface-gap: Value 1.5 not in range" ${DERMIS} fit ${WORK}/dense_torus.obj
+           -o ${WORK}/bad_refit.dsurf --surface-gap 1.5)
 # --shading-shape: 'auto' (the default) or a factor in [0, 1]; anything else is a usage error.
 string(FIND "${fit_help}" "--shading-shape TEXT=auto " at)
 if(at LESS 0)

@@ -120,12 +120,13 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
       m["crease_cut_edges"] = c.crease_cut_edges;
       m["crease_cut_vertices"] = c.crease_cut_vertices;
     }
-    if (c.surface_gap_points > 0) m["surface_gap_points"] = c.surface_gap_points;
     if (q.grown_target > 0) {
       m["grown_target"] = q.grown_target;
       m["deviation_edge_lengths"] = q.deviation;
     }
   }
+  // Characters (CharacterFitOptions::surface_gap), whichever method made the control mesh.
+  if (c.surface_gap_points > 0) m["surface_gap_points"] = c.surface_gap_points;
   return m;
 }
 
@@ -711,8 +712,8 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_option("--surface-gap", args->surface_gap,
                   "Characters: where the fitted surface is farther than this fraction of a "
                   "part's diagonal from the source, the source's nearest points join the data "
-                  "and the part is fitted again, once (0: off; docs/characters.md, \"Where the "
-                  "surface leaves the source\")")
+                  "and the part is fitted again, once, kept unless its Hausdorff distance is "
+                  "larger (0: off; docs/characters.md, \"Where the surface leaves the source\")")
       ->check(CLI::Range(0.0, 0.999))
       ->capture_default_str();
   cmd->add_flag("--refit", args->refit,

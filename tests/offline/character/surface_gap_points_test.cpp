@@ -49,20 +49,29 @@ struct FlatFan {
   }
 };
 
+/// SurfaceGapPoints against `source`, its shading surface flat, or (`dome` > 0) Phong's at
+/// shape 1 over corner normals leaning out by dome x their distance from the z axis.
 std::vector<Vec3> Gaps(const FlatFan& fan, const PolygonMesh& source, double max_distance,
-                       int per_edge = 4) {
+                       int per_edge = 4, double dome = 0.0) {
   TriangleDistanceTree tree;
   const std::vector<std::uint32_t> triangles(source.face_vertices.begin(),
                                              source.face_vertices.end());
   REQUIRE(tree.Build(source.positions, triangles));
-  ShadingSurface flat;
-  flat.Build(source, {}, 0.0, 0.0);
-  return character::SurfaceGapPoints(fan.fitted, tree, flat, max_distance, per_edge);
+  std::vector<Vec3> normals;
+  if (dome > 0.0) {
+    for (const Index v : source.face_vertices) {
+      const Vec3& x = source.positions[v];
+      normals.push_back(glm::normalize(Vec3(dome * x.x, dome * x.y, 1.0)));
+    }
+  }
+  ShadingSurface shading;
+  shading.Build(source, normals, dome > 0.0 ? 1.0 : 0.0, 0.0);
+  return character::SurfaceGapPoints(fan.fitted, tree, shading, max_distance, per_edge);
 }
 
 }  // namespace
 
-TEST_CASE("character surface gaps: a source 0.01 off gives the point under each sample") {
+TEST_CASE("character surface gaps: a source 0.01 off gives the point over each sample") {
   const FlatFan fan;
   REQUIRE(fan.evaluated.size() == 64);
   for (const Vec3& p : fan.evaluated) REQUIRE(std::abs(p.z) < 1e-12);
@@ -81,6 +90,12 @@ TEST_CASE("character surface gaps: a source 0.01 off gives the point under each 
   CHECK(Gaps(fan, source, 0.005, 0).empty());
   // 2 x 2 per face: 16 points.
   CHECK(Gaps(fan, source, 0.005, 2).size() == 16);
+  // On a curved shading surface (the plane's Phong surface under normals leaning out, which
+  // rises above the plane inside its triangles) the points are the shading surface's, not the
+  // plane's: every one above it.
+  const std::vector<Vec3> domed = Gaps(fan, source, 0.005, 4, 1e-3);
+  REQUIRE(domed.size() == fan.evaluated.size());
+  for (const Vec3& q : domed) CHECK(q.z > 0.0101);
 }
 
 TEST_CASE("character surface gaps: on a tilted source, the points farther than the bound") {

@@ -133,6 +133,10 @@ CreaseTest TestCreases(const PolygonMesh& mesh, const QuadRemeshOptions& remesh)
 }
 
 /// The length of the bounding box's diagonal of `x` (0 if empty).
+// Points per control-face edge at which a kept fit's surface is checked against the source
+// (SurfaceGapPoints): 16 per face, about as many as the fit has data points per face.
+constexpr int kSurfaceGapSamplesPerEdge = 4;
+
 double Diagonal(const std::vector<Vec3>& x) {
   if (x.empty()) return 0.0;
   Vec3 lo = x[0], hi = x[0];
@@ -576,7 +580,8 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // takes this step too).
   const double gap = options.surface_gap * Diagonal(dense.positions);
   if (gap > 0.0 && tree) {
-    const std::vector<Vec3> more = character::SurfaceGapPoints(*fitted, *tree, shading, gap, 4);
+    const std::vector<Vec3> more =
+        character::SurfaceGapPoints(*fitted, *tree, shading, gap, kSurfaceGapSamplesPerEdge);
     if (!more.empty()) {
       FitInput again = *kept_input;
       again.points.insert(again.points.end(), more.begin(), more.end());
@@ -584,8 +589,10 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
       kept_options.progress = nullptr;
       FittedSurface refit;
       FitReport refit_report;
+      // Hausdorff distances in model units: each fit's unit is its own points' size, and the
+      // added points (on a curved shading surface) can lie outside the first fit's box.
       if (FitSurface(again, kept_options, &refit, &refit_report).ok() &&
-          !(refit_report.error.hausdorff > fr->error.hausdorff)) {
+          !(refit_report.error.hausdorff * refit_report.scale > fr->error.hausdorff * fr->scale)) {
         // What this function adds to the report (the cut, the support rows) is the same.
         const ControlMeshInfo& was = fr->control_mesh;
         ControlMeshInfo& now = refit_report.control_mesh;
@@ -867,7 +874,8 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
       part.surface.domain = std::move(fitted.surface.domain);
       part.surface.rest_positions = fitted.surface.control.positions;
       part.surface.displacement = std::move(fitted.displacement);
-      // The points fitted: the welded vertices and the samples inside large triangles.
+      // The points fitted: the welded vertices, the samples on the triangles and any points
+      // added where the surface left the source (CharacterFitOptions::surface_gap).
       part.surface.data_points = fr.points;
       const DisplacedSurface& surf = part.surface;
       const std::vector<LocalPatch>& patches = fitted.surface.patches;

@@ -73,7 +73,8 @@ struct ControlMeshInfo {
   /// that fit was kept; 0 where the control mesh keeps no creases by design).
   double crease_angle_deg = 0.0;
   /// Characters: the source points added where the fitted surface left the source, before the
-  /// part was fitted again (CharacterFitOptions::surface_gap; 0: none, or not checked).
+  /// part was fitted again (CharacterFitOptions::surface_gap; 0: none found, the refit not kept,
+  /// or not checked).
   int surface_gap_points = 0;
 };
 

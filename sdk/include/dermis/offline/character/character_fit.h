@@ -194,14 +194,16 @@ struct CharacterFitOptions {
   /// the remesh keeps creases (remesh_creases), which matches or beats it on every character.
   bool compare_simplified = false;
   double simplified_margin = 0.9;
-  /// Every fit of a part is checked the other way round: the fitted surface at 4 x 4 points per
-  /// control face against the source (its shading surface); where it is farther than this
-  /// fraction of the part's bounding-box diagonal, the source's nearest point is added to the
-  /// data and the part fitted again, once. The fit places the surface at its data's
-  /// parameters, so a bulge no data point projects onto (beyond a pointed corner) is seen by
-  /// none of its errors (docs/characters.md, "Where the surface leaves the source";
-  /// RiggedFigure's Hausdorff 0.38 % -> 0.27 %). 0: off; in [0, 1), anything else is refused by
-  /// FitCharacter. Costs one more fit of the parts where it finds such points.
+  /// Once a part's fit is chosen (after the comparisons above), it is checked the other way
+  /// round: the fitted surface at 4 x 4 points per control face against the source (its
+  /// shading surface); where it is farther than this fraction of the part's bounding-box
+  /// diagonal, the source's nearest point is added to the data and the part fitted again, once,
+  /// with the same options; the refit is kept unless its two-sided Hausdorff distance is larger.
+  /// The fit places the surface at its data's parameters, so a bulge no data point projects onto
+  /// (beyond a pointed corner) is seen by none of its errors (docs/characters.md, "Where the
+  /// surface leaves the source"; RiggedFigure's Hausdorff 0.38 % -> 0.27 %). 0: off; in [0, 1),
+  /// anything else is refused by FitCharacter. Costs one more fit of the parts where it finds
+  /// such points (two on a low-poly part whose second fit, low_poly_crease_angle, finds some).
   double surface_gap = 1e-3;
   /// Components with fewer welded vertices are left unfitted ("too small").
   int min_vertices = 8;
