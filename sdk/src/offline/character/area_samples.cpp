@@ -36,6 +36,7 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
   struct Shape {
     int k0 = 0;
     double longest = 0.0, height = 0.0;
+    double twice_area = 0.0;  ///< |(b - a) x (c - a)|
   };
   std::vector<Shape> shape(nf);
   const double cos_crease = std::cos(crease_angle);
@@ -46,6 +47,7 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
     const Vec3 n = glm::cross(b - a, c - a);
     const double ln = glm::length(n);
     normal[fi] = ln > 0.0 ? n / ln : Vec3(0.0);
+    shape[fi].twice_area = ln;
     for (int k = 0; k < 3; ++k) {
       const Index x = v[k], y = v[(k + 1) % 3];
       edges[{std::min(x, y), std::max(x, y)}].push_back(f);
@@ -113,16 +115,11 @@ std::vector<Vec3> AreaSamples(const PolygonMesh& mesh, const ShadingSurface& sha
       const double angle =
           std::atan2(glm::length(glm::cross(normal[f], ng)), glm::dot(normal[f], ng));
       if (!(angle > 0.0)) continue;
-      // A face's height over the edge: twice its area over the edge's length (not zero: the
+      // Each face's height over the edge: twice its area over the edge's length (not zero: the
       // faces have area).
       const double length = glm::length(mesh.positions[y] - mesh.positions[x]);
-      auto height_over = [&](std::size_t face) {
-        const Index* v = &mesh.face_vertices[mesh.face_offsets[static_cast<Index>(face)]];
-        return glm::length(glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
-                                      mesh.positions[v[2]] - mesh.positions[v[0]])) /
-               length;
-      };
-      const double step = turn_per_sample * 0.5 * (height_over(f) + height_over(g)) / angle;
+      const double step = turn_per_sample * 0.5 *
+                          (shape[f].twice_area / length + shape[g].twice_area / length) / angle;
       if (is_sliver(f)) face_spacing[f] = std::min(face_spacing[f], step);
       if (is_sliver(g)) face_spacing[g] = std::min(face_spacing[g], step);
     }

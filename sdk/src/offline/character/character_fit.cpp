@@ -132,11 +132,11 @@ CreaseTest TestCreases(const PolygonMesh& mesh, const QuadRemeshOptions& remesh)
   return t;
 }
 
-/// The length of the bounding box's diagonal of `x` (0 if empty).
 // Points per control-face edge at which a kept fit's surface is checked against the source
 // (SurfaceGapPoints): 16 per face, about as many as the fit has data points per face.
 constexpr int kSurfaceGapSamplesPerEdge = 4;
 
+/// The length of the bounding box's diagonal of `x` (0 if empty).
 double Diagonal(const std::vector<Vec3>& x) {
   if (x.empty()) return 0.0;
   Vec3 lo = x[0], hi = x[0];
@@ -302,7 +302,8 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // 0.75, the one whose surface's own normals come closest to the shading normals
   // (ShadingSurface::NormalDeviation; the smaller on a tie, so a part without normals stays
   // flat).
-  const double max_move = options.shading_max_move * Diagonal(dense.positions);
+  const double diagonal = Diagonal(dense.positions);
+  const double max_move = options.shading_max_move * diagonal;
   ShadingSurface shading;
   shading.Build(dense, corner_normals, 0.0, max_move);
   const double flat_deviation = shading.NormalDeviation();
@@ -408,7 +409,7 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   auto support = std::make_shared<CreaseSupportResult>();
   if (supported && tree) {
     // Crease vertices of the remesh lie on the chains to rounding (CreaseChains::Between).
-    const double tolerance = 1e-7 * Diagonal(dense.positions);
+    const double tolerance = 1e-7 * diagonal;
     const double keep = options.crease_support;
     std::function<void(PolygonMesh*)> then = fo.place_control_vertices;
     fo.place_control_vertices = [ref = creases.ref, chains = creases.chains, tree, then, tolerance,
@@ -428,7 +429,7 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // any move.
   auto cut_result = std::make_shared<CreaseCutResult>();
   if (cut) {
-    const double tolerance = 1e-7 * Diagonal(dense.positions);
+    const double tolerance = 1e-7 * diagonal;
     fo.cut_control_mesh = [ref = creases.ref, chains = creases.chains, tolerance, cut_result](
                               PolygonMesh* control, std::vector<std::uint8_t>* seam) {
       (void)ref;  // the chains' surface, kept alive with them
@@ -578,7 +579,7 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // that fit); the refit is kept unless its two-sided Hausdorff distance is larger. After the
   // comparisons above (they keep their decisions), before the low-poly refit's (whose own fit
   // takes this step too).
-  const double gap = options.surface_gap * Diagonal(dense.positions);
+  const double gap = options.surface_gap * diagonal;
   if (gap > 0.0 && tree) {
     const std::vector<Vec3> more =
         character::SurfaceGapPoints(*fitted, *tree, shading, gap, kSurfaceGapSamplesPerEdge);
