@@ -912,15 +912,15 @@ int RunCharacters(const Settings& st) {
           "control crease edges; support rows: %d loops, %d vertices moved; cut open: %d edges, "
           "%d vertices added; control-vertex fit: %d rounds; shading shape %.2f (normals %.2f deg "
           "from the shading normals, the flat triangles %.2f); creases from %.1f deg; surface "
-          "gaps: %d source points added%s%s%s\n",
+          "gaps: %d source points added; check points: %d, %d levels dropped%s%s%s\n",
           name, p, c.method.c_str(), c.quality.vertices, c.quality.target_vertices,
           100.0 * c.quality.valence4_share, c.quality.min_corner_angle_deg,
           c.quality.max_corner_angle_deg, c.quality.crease_edges_kept, c.quality.crease_edges,
           c.quality.crease_chains, c.quality.crease_closed_chains, c.quality.control_crease_edges,
           c.crease_support_loops, c.crease_support_vertices, c.crease_cut_edges,
           c.crease_cut_vertices, c.control_fit_rounds, c.shading_shape, c.shading_deviation_deg,
-          c.flat_deviation_deg, c.crease_angle_deg, c.surface_gap_points,
-          c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str(),
+          c.flat_deviation_deg, c.crease_angle_deg, c.surface_gap_points, c.check_points,
+          c.check_levels_dropped, c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str(),
           c.quality.input_quads ? ("; the input's own quads (the remesh had " +
                                    std::to_string(c.quality.remesh_vertices) + " vertices)")
                                       .c_str()

@@ -164,6 +164,10 @@ expect_run(2 "--surface-gap applies to a character" ${DERMIS} fit ${WORK}/dense_
            -o ${WORK}/bad_refit.dsurf --surface-gap 0.001)
 expect_run(2 "--surface-gap: Value 1.5 not in range" ${DERMIS} fit ${WORK}/dense_torus.obj
            -o ${WORK}/bad_refit.dsurf --surface-gap 1.5)
+expect_run(2 "--check-points applies to a character" ${DERMIS} fit ${WORK}/dense_torus.obj
+           -o ${WORK}/bad_refit.dsurf --check-points 2)
+expect_run(2 "--check-points: Value 65 not in range" ${DERMIS} fit ${WORK}/dense_torus.obj
+           -o ${WORK}/bad_refit.dsurf --check-points 65)
 # --shading-shape: 'auto' (the default) or a factor in [0, 1]; anything else is a usage error.
 string(FIND "${fit_help}" "--shading-shape TEXT=auto " at)
 if(at LESS 0)
@@ -329,7 +333,8 @@ endforeach()
 expect_help_defaults("${report}" character)
 # The shading surface: chosen per part by default, and the report says which.
 foreach(key "\"shading-shape\": \"auto\"" "\"shading_shape\": " "\"shading_normal_deviation_deg\": "
-            "\"flat_normal_deviation_deg\": " "\"low-poly-crease-angle\": 0.1" "\"crease_angle_deg\": ")
+            "\"flat_normal_deviation_deg\": " "\"low-poly-crease-angle\": 0.1" "\"crease_angle_deg\": "
+            "\"check-points\": 1")
   string(FIND "${report}" "${key}" at)
   if(at LESS 0)
     message(FATAL_ERROR "skin.json has no ${key}:\n${report}")

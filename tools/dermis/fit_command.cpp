@@ -65,6 +65,7 @@ struct FitArgs {
   double crease_support = CharacterFitOptions{}.crease_support;
   double input_quads = CharacterFitOptions{}.input_quads;
   double surface_gap = CharacterFitOptions{}.surface_gap;
+  double check_points = CharacterFitOptions{}.check_points;
   double low_poly_crease_angle = CharacterFitOptions{}.low_poly_crease_angle;
   bool refit = false;
   // Options given on the command line that only one kind of input takes (set at parse time):
@@ -127,6 +128,11 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
   }
   // Characters (CharacterFitOptions::surface_gap), whichever method made the control mesh.
   if (c.surface_gap_points > 0) m["surface_gap_points"] = c.surface_gap_points;
+  // Characters' low-poly parts (CharacterFitOptions::check_points).
+  if (c.check_points > 0) {
+    m["check_points"] = c.check_points;
+    m["check_levels_dropped"] = c.check_levels_dropped;
+  }
   return m;
 }
 
@@ -273,6 +279,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   options_json["creases-closed"] = !options.cut_creases;
   options_json["input-quads"] = options.input_quads;
   options_json["surface-gap"] = options.surface_gap;
+  options_json["check-points"] = options.check_points;
   options_json["refit"] = a.refit;
   Json j;
   StartReport(&j, "dermis.fit-character/1", std::move(options_json));
@@ -347,6 +354,7 @@ int RunFitCharacter(const FitArgs& a) {
   options.crease_support = a.crease_support;
   options.input_quads = a.input_quads;
   options.surface_gap = a.surface_gap;
+  options.check_points = a.check_points;
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit_clean_iterations = a.clean_rounds;
@@ -716,6 +724,13 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "larger (0: off; docs/characters.md, \"Where the surface leaves the source\")")
       ->check(CLI::Range(0.0, 0.999))
       ->capture_default_str();
+  cmd->add_option("--check-points", args->check_points,
+                  "Characters: check points on a low-poly part's triangles, this many per area "
+                  "of its samples' spacing squared, never fitted: the displacement levels after "
+                  "the last one that brought them 1% closer are dropped (0: none; "
+                  "docs/characters.md, \"Levels checked between the samples\")")
+      ->check(CLI::Range(0.0, 64.0))
+      ->capture_default_str();
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
@@ -733,9 +748,10 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         for (const char* name : {"--control-vertices", "--control-mesh", "--holdout"}) {
           if (cmd->count(name) > 0) args->surface_only.push_back(name);
         }
-        for (const char* name : {"--control-ratio", "--shading-shape", "--shading-max-move",
-                                 "--crease-smoothing", "--vertex-weight", "--crease-support",
-                                 "--input-quads", "--low-poly-crease-angle", "--surface-gap"}) {
+        for (const char* name :
+             {"--control-ratio", "--shading-shape", "--shading-max-move", "--crease-smoothing",
+              "--vertex-weight", "--crease-support", "--input-quads", "--low-poly-crease-angle",
+              "--surface-gap", "--check-points"}) {
           if (cmd->count(name) > 0) args->character_only.push_back(name);
         }
         if (args->refit) args->character_only.push_back("--refit");  // --refit=false is fine

@@ -369,6 +369,125 @@ TEST_CASE("adaptive fit: the stopping rule stops on noise and follows a signal",
   }
 }
 
+TEST_CASE("adaptive fit: check points drop the levels that swing between rows of fitted points",
+          "[adaptive]") {
+  // Fitted points on 8 rows across the chart, each row off the smooth truth by +-0.004 in turn
+  // (a row that disagrees with its neighbours, as a low-poly part's sample rows along its
+  // facets do with the curve between them): levels fine enough to follow the rows one by one
+  // lower the fitted points' error and swing between the rows. Check points spread over the
+  // chart on the truth see the swing.
+  const std::vector<double> half = {1.0};
+  const double offset = 0.004;
+  std::vector<DisplacementTarget> targets;
+  for (int r = 0; r < 8; ++r) {
+    const double y = -0.875 + 0.25 * r;
+    for (int i = 0; i <= 100; ++i) {
+      const Vec2 z(-1.0 + 0.02 * i, y);
+      targets.push_back(Single(z, Smooth(z) + (r % 2 == 0 ? offset : -offset)));
+    }
+  }
+  const std::size_t fitted = targets.size();
+  test::Lcg rng(11);
+  for (int n = 0; n < 400; ++n) {
+    const Vec2 z(rng.Uniform(-1, 1), rng.Uniform(-1, 1));
+    DisplacementTarget t = Single(z, Smooth(z));
+    t.check = true;
+    targets.push_back(t);
+  }
+  AdaptiveDisplacementOptions o;
+  o.validation = 0.0;
+  o.max_coefficients_per_point = 0.0;
+  o.threads = 2;
+  o.max_levels = 7;
+  BsplineDisplacementData with, without;
+  AdaptiveDisplacementReport rw, rn;
+  REQUIRE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());
+  std::vector<DisplacementTarget> plain(targets.begin(),
+                                        targets.begin() + static_cast<std::ptrdiff_t>(fitted));
+  REQUIRE(FitAdaptiveDisplacement(half, plain, o, &without, &rn).ok());
+  INFO("levels with check points " << rw.levels << " (" << rw.stopped_by << "), without "
+                                   << rn.levels << " (" << rn.stopped_by << ")");
+  CHECK(rw.check_points == 400);
+  CHECK(rn.check_points == 0);
+  CHECK(rn.check_mean.empty());
+  CHECK(rw.stopped_by == "check points");
+  CHECK(rw.levels < rn.levels);
+  CHECK(rw.coefficients < rn.coefficients);
+  // The rule as stated: the levels after the last one that brought the check points 1 % closer
+  // are dropped (check_mean[L]: with L levels), and those kept bring them closer than none.
+  const std::vector<double>& m = rw.check_mean;
+  REQUIRE(m.size() > static_cast<std::size_t>(rw.levels) + 1);
+  CHECK(m[static_cast<std::size_t>(rw.levels)] < 0.99 * m[static_cast<std::size_t>(rw.levels) - 1]);
+  for (std::size_t k = static_cast<std::size_t>(rw.levels) + 1; k < m.size(); ++k) {
+    CHECK_FALSE(m[k] < 0.99 * m[k - 1]);
+  }
+  CHECK(m[static_cast<std::size_t>(rw.levels)] < 0.99 * m[0]);
+  // The kept levels are the first levels of the fit without check points (check points are
+  // never fitted), and closer to the truth between the rows than all of them.
+  CHECK(std::equal(with.values.begin(), with.values.end(), without.values.begin()));
+  Status s;
+  auto dw = BsplineDisplacement::Create(with, 1, &s);
+  auto dn = BsplineDisplacement::Create(without, 1, &s);
+  REQUIRE(dw);
+  REQUIRE(dn);
+  double ew = 0.0, en = 0.0;
+  for (int j = 0; j < 8; ++j) {  // the lines halfway between the rows
+    const double y = -0.75 + 0.25 * j;
+    if (y > 0.8) break;
+    for (int i = 0; i <= 50; ++i) {
+      const Vec2 z(-0.9 + 0.036 * i, y);
+      double a = 0.0, b = 0.0;
+      Vec2 ga, gb;
+      dw->Evaluate(0, z, &a, &ga);
+      dn->Evaluate(0, z, &b, &gb);
+      ew += std::abs(a - Smooth(z)), en += std::abs(b - Smooth(z));
+    }
+  }
+  CHECK(ew < 0.8 * en);
+}
+
+TEST_CASE("adaptive fit: check points that no level brings closer than none leave every level",
+          "[adaptive]") {
+  // Check points on the surface without any level (their displacement 0: as on a part whose
+  // domain surface already passes through the flat sides the check points cover, while the
+  // levels are there for a few small places): no level brings them closer than none, so
+  // their mean cannot tell which level helps, and the fit is the one without them.
+  const std::vector<double> half = {1.0};
+  std::vector<DisplacementTarget> targets;
+  test::Lcg rng(12);
+  for (int n = 0; n < 2000; ++n) {
+    const Vec2 z(rng.Uniform(-1, 0.2), rng.Uniform(-1, 0.2));
+    targets.push_back(Single(z, Smooth(z) + 0.01 * std::sin(8.0 * z.x + 3.0 * z.y)));
+  }
+  const std::size_t fitted = targets.size();
+  for (int n = 0; n < 50; ++n) {
+    const Vec2 z(rng.Uniform(-1, 0.2), rng.Uniform(-1, 0.2));
+    DisplacementTarget t = Single(z, 0.0);
+    t.check = true;
+    targets.push_back(t);
+  }
+  AdaptiveDisplacementOptions o;
+  o.validation = 0.0;
+  o.max_coefficients_per_point = 0.0;
+  o.threads = 2;
+  o.max_levels = 5;
+  BsplineDisplacementData with, without;
+  AdaptiveDisplacementReport rw, rn;
+  REQUIRE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());
+  std::vector<DisplacementTarget> plain(targets.begin(),
+                                        targets.begin() + static_cast<std::ptrdiff_t>(fitted));
+  REQUIRE(FitAdaptiveDisplacement(half, plain, o, &without, &rn).ok());
+  CHECK(rw.check_points == 50);
+  CHECK(rw.levels == rn.levels);
+  CHECK(rw.stopped_by == rn.stopped_by);
+  CHECK(with.values == without.values);
+  // And a check improvement outside [0, 1) is refused.
+  o.check_improvement = 1.0;
+  CHECK_FALSE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());
+  o.check_improvement = -0.1;
+  CHECK_FALSE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());
+}
+
 TEST_CASE("adaptive fit: truncating to L levels is exactly the L-level fit", "[adaptive]") {
   test::Lcg rng(6);
   std::vector<DisplacementTarget> targets;

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "area_samples.h"
+#include "check_points.h"
 #include "dermis/offline/build/crease_chains.h"
 #include "dermis/offline/build/crease_cut.h"
 #include "dermis/offline/build/crease_support.h"
@@ -135,6 +136,8 @@ CreaseTest TestCreases(const PolygonMesh& mesh, const QuadRemeshOptions& remesh)
 // Points per control-face edge at which a kept fit's surface is checked against the source
 // (SurfaceGapPoints): 16 per face, about as many as the fit has data points per face.
 constexpr int kSurfaceGapSamplesPerEdge = 4;
+// The check points' fixed seed (CheckPoints): the same points on every run.
+constexpr std::uint64_t kCheckPointSeed = 0x636865636bull;
 
 /// The length of the bounding box's diagonal of `x` (0 if empty).
 double Diagonal(const std::vector<Vec3>& x) {
@@ -453,13 +456,23 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     // their inserted loops, about as close. Low-poly here is at most min_control_vertices welded
     // vertices by default, any part with vertex_ratio >= 1 (each sliver's points capped by the
     // sampler).
-    const double turn = options.max_turn > 0.0 && fo.control_vertices >= dense.num_vertices()
+    const bool low_poly = fo.control_vertices >= dense.num_vertices();
+    const double turn = options.max_turn > 0.0 && low_poly
                             ? options.max_turn / (2.0 * options.samples_per_control_edge)
                             : 0.0;
     const std::vector<Vec3> extra = character::AreaSamples(
         dense, shading, smooth_edges, edge / options.samples_per_control_edge, options.crease_angle,
         options.crease_samples, options.crease_rows, turn);
     input.points.insert(input.points.end(), extra.begin(), extra.end());
+    // Check points between the samples (CharacterFitOptions::check_points), on a low-poly
+    // part only: on a denser one the levels follow its vertices, and the check points confirm
+    // every level (CesiumMan and the demo creature: the same levels, 1.5 s more on the
+    // creature).
+    if (options.check_points > 0.0 && low_poly) {
+      input.check_points =
+          character::CheckPoints(dense, shading, edge / options.samples_per_control_edge,
+                                 options.check_points, kCheckPointSeed);
+    }
   }
   input.mesh = &dense;
   FitInput plain_input = input;
@@ -608,6 +621,12 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     }
   }
   fr->control_mesh.control_fit_rounds = static_cast<int>(fr->control_fit_rounds);
+  {
+    const AdaptiveDisplacementReport& d = fr->displacement_fit;
+    fr->control_mesh.check_points = static_cast<int>(d.check_points);
+    fr->control_mesh.check_levels_dropped =
+        d.check_mean.empty() ? 0 : static_cast<int>(d.check_mean.size()) - 1 - d.levels;
+  }
   fr->control_mesh.shading_shape = shape;
   fr->control_mesh.shading_deviation_deg = glm::degrees(deviation);
   fr->control_mesh.flat_deviation_deg = glm::degrees(flat_deviation);
@@ -764,6 +783,10 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
     return Status::InvalidInput(
         "character fit: shading_shape must be negative (chosen per part) or in [0, 1], not " +
         std::to_string(options.shading_shape));
+  }
+  if (!(options.check_points >= 0.0 && options.check_points <= 64.0)) {
+    return Status::InvalidInput("character fit: check_points must be in [0, 64] (0: none), not " +
+                                std::to_string(options.check_points));
   }
   if (!(options.surface_gap >= 0.0 && options.surface_gap < 1.0)) {
     return Status::InvalidInput("character fit: surface_gap must be in [0, 1) (0: off), not " +

@@ -3,12 +3,12 @@
 // coarse-to-fine levels fitted by DisplacementLevelFitter (density and residual criteria,
 // joint penalised least squares), a fixed-seed validation split that stops adding levels when
 // they stop helping points the fit has not seen, then the fit on every point with the levels
-// kept, stored as per-level sparse corrections (BsplineLevelForm::kAdditive).
+// kept, less those after the last that brought the check points (if any) closer, stored as
+// per-level sparse corrections (BsplineLevelForm::kAdditive).
 #include "dermis/offline/fit/adaptive_displacement_fit.h"
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "dermis/core/parallel.h"
 
@@ -38,10 +38,11 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
     return Status::InvalidInput("displacement fit: the validation fraction must lie in [0, 1)");
   }
   if (!(options.min_node_weight > 0.0) || !(options.smoothing >= 0.0) ||
-      !(options.residual_threshold >= 0.0) || !(options.min_improvement >= 0.0)) {
+      !(options.residual_threshold >= 0.0) || !(options.min_improvement >= 0.0) ||
+      !(options.check_improvement >= 0.0 && options.check_improvement < 1.0)) {
     return Status::InvalidInput(
         "displacement fit: the node weight must be positive; smoothing, residual threshold "
-        "and improvement must not be negative");
+        "and improvements must not be negative (a check improvement below 1)");
   }
   const std::size_t nc = half_extent.size();
   for (double r : half_extent) {
@@ -71,8 +72,11 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
   lopt.threads = ResolveThreadCount(options.threads);
   const int max_levels = std::clamp(options.max_levels, 1, kMaxBsplineLevels);
   AdaptiveDisplacementReport rep;
-  std::vector<std::uint32_t> all(targets.size());
-  std::iota(all.begin(), all.end(), 0u);
+  // The fitted points, and the check points (measured only).
+  std::vector<std::uint32_t> all, checks;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    (targets[i].check ? checks : all).push_back(static_cast<std::uint32_t>(i));
+  }
   // The residual criterion's threshold for a level: a multiple of the mean error the levels
   // before it left (for level 0: of the domain surface's error).
   auto threshold = [&](double mean_error) { return options.residual_threshold * mean_error; };
@@ -83,7 +87,7 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
     double total = -1.0;
     if (options.max_coefficients >= 0) {
       total = static_cast<double>(options.max_coefficients) * static_cast<double>(points) /
-              static_cast<double>(std::max<std::size_t>(targets.size(), 1));
+              static_cast<double>(std::max<std::size_t>(all.size(), 1));
     } else if (options.max_coefficients_per_point > 0.0) {
       total = options.max_coefficients_per_point * static_cast<double>(points);
     }
@@ -136,7 +140,8 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
   }
 
   // 2. The fit on every point with that many levels, each level's active nodes and values
-  // kept per chart.
+  // kept per chart; with check points, the levels that no longer bring them closer are then
+  // dropped (the check points' rule).
   BsplineDisplacementData data;
   data.form = BsplineLevelForm::kAdditive;
   data.half_extent = half_extent;
@@ -144,7 +149,9 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
   std::vector<std::vector<std::vector<std::uint32_t>>> nodes(static_cast<std::size_t>(levels));
   std::vector<std::vector<std::vector<float>>> values(static_cast<std::size_t>(levels));
   {
-    DisplacementLevelFitter fit(half_extent, targets, all, {}, lopt);
+    DisplacementLevelFitter fit(half_extent, targets, all, checks, lopt);
+    rep.check_points = static_cast<std::int64_t>(checks.size());
+    if (!checks.empty()) rep.check_mean.push_back(fit.EvalError());
     std::int64_t used = 0;
     for (int k = 0; k < levels; ++k) {
       int iterations = 0;
@@ -170,11 +177,40 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
         levels = k;
         break;
       }
+      if (!checks.empty()) rep.check_mean.push_back(fit.EvalError());
       for (std::size_t c = 0; c < nc; ++c) {
         if (fit.nodes(c).empty()) continue;
         nodes[static_cast<std::size_t>(k)][c] = fit.nodes(c);
         values[static_cast<std::size_t>(k)][c] = fit.values(c);
         data.num_levels[c] = static_cast<std::uint8_t>(k + 1);
+      }
+    }
+  }
+  // The check points' rule: check_mean[L] is their error with the first L levels (additive
+  // levels: each prefix is exactly the fit with that many levels). The levels after the last
+  // one that brought them closer by check_improvement are dropped.
+  if (!checks.empty()) {
+    int keep = levels;
+    while (keep > 0 && !(rep.check_mean[static_cast<std::size_t>(keep)] <
+                         (1.0 - options.check_improvement) *
+                             rep.check_mean[static_cast<std::size_t>(keep - 1)])) {
+      --keep;
+    }
+    // Only where the levels kept bring the check points closer than the domain surface alone:
+    // where none does, the check points' mean cannot see what the levels are for (a bulge at
+    // a fold, on a surface already closest to them without a level), and every level stays.
+    const bool telling = keep > 0 && rep.check_mean[static_cast<std::size_t>(keep)] <
+                                         (1.0 - options.check_improvement) * rep.check_mean[0];
+    if (telling && keep < levels) {
+      rep.stopped_by = "check points";
+      levels = keep;
+      rep.level_nodes.resize(static_cast<std::size_t>(keep));
+      for (std::size_t c = 0; c < nc; ++c) {
+        std::uint8_t l = 0;
+        for (int k = 0; k < keep; ++k) {
+          if (!nodes[static_cast<std::size_t>(k)][c].empty()) l = static_cast<std::uint8_t>(k + 1);
+        }
+        data.num_levels[c] = l;
       }
     }
   }

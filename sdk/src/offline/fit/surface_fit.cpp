@@ -105,6 +105,12 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
       }
     }
   }
+  for (std::size_t i = 0; i < input.check_points.size(); ++i) {
+    const Vec3& p = input.check_points[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      return Status::InvalidInput(where + ": check point " + std::to_string(i) + " is not finite");
+    }
+  }
   Vec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
   for (std::size_t i = 0; i < input.points.size(); ++i) {
     const Vec3& p = input.points[i];
@@ -332,6 +338,18 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     if (weighted) {
       for (std::size_t k = 0; k < targets.size(); ++k) {
         targets[k].weight = fit_weights[target_point[k]];
+      }
+    }
+    // The check points, projected and optimised as the fitted points (their common
+    // displacement is what the levels bring them to).
+    if (!input.check_points.empty()) {
+      std::vector<PointFit> check_fits;
+      FitPoints(fitted.surface, input.check_points, pf, &check_fits);
+      std::vector<DisplacementTarget> check_targets;
+      MakeDisplacementTargets(domain, patches, check_fits, &check_targets);
+      for (DisplacementTarget& t : check_targets) {
+        t.check = true;
+        targets.push_back(t);
       }
     }
     std::vector<double> half(static_cast<std::size_t>(domain.num_vertices()));

@@ -76,6 +76,10 @@ struct ControlMeshInfo {
   /// part was fitted again (CharacterFitOptions::surface_gap; 0: none found, the refit not kept,
   /// or not checked).
   int surface_gap_points = 0;
+  /// Characters: the check points between the samples (CharacterFitOptions::check_points; 0:
+  /// none), and the displacement levels their rule dropped.
+  int check_points = 0;
+  int check_levels_dropped = 0;
 };
 
 /// Builds a control mesh from a polygon mesh (faces are fan-triangulated): welds vertices

@@ -47,6 +47,16 @@ struct AdaptiveDisplacementOptions {
   /// The stopping rule: level k is kept only if it lowers the mean validation error by at
   /// least this fraction.
   double min_improvement = 0.01;
+  /// The check points' rule (targets with DisplacementTarget::check: points between the
+  /// fitted ones, never fitted): the final fit drops the levels after the last one that lowered
+  /// the check points' mean error by at least this fraction, provided the levels it keeps bring
+  /// them closer than no level does by that fraction (where none does, their mean cannot tell
+  /// what the levels are for, and every level stays). A level that follows the fitted points
+  /// and adds nothing between them fails it where a validation split, on the same lines as the
+  /// fitted points, does not; a level that makes them worse before finer ones bring them
+  /// closer is kept (docs/characters.md, "Levels checked between the samples"). In [0, 1);
+  /// ignored without check points.
+  double check_improvement = 0.01;
   /// Conjugate-gradient steps per level, at most.
   int solver_iterations = 12;
   /// ... or once the residual norm is below this fraction of the right-hand side's.
@@ -70,12 +80,17 @@ struct AdaptiveDisplacementReport {
   std::vector<AdaptiveLevelReport> trial;  ///< The stopping rule's trial levels, in order.
   int levels = 0;                          ///< Levels kept.
   /// What ended the levels: "validation" (the stopping rule), "fitted points" (without a
-  /// validation split: the fitted points' error), "budget" (the coefficient budget was
-  /// spent), "no supported node" (the density and residual criteria left none) or
-  /// "max levels".
+  /// validation split: the fitted points' error), "check points" (their rule), "budget" (the
+  /// coefficient budget was spent), "no supported node" (the density and residual criteria left
+  /// none) or "max levels".
   std::string stopped_by;
   std::int64_t coefficients = 0;          ///< Stored coefficients of the final fit.
   std::vector<std::int64_t> level_nodes;  ///< Active nodes per kept level (final fit).
+  /// With check points: their count, and their mean |D - p| (model units) with no level and
+  /// after each level the final fit added before the check points' rule (which keeps the
+  /// first `levels`).
+  std::int64_t check_points = 0;
+  std::vector<double> check_mean;
 };
 
 /// Whether target i belongs to the validation split (a fixed hash of i and the seed).
@@ -88,8 +103,9 @@ bool IsValidationPoint(std::size_t i, double fraction, std::uint64_t seed);
 ///   sum_p |D(z_p) - p|^2 + sum_charts lambda_c (thin-plate energy + 1e-6 |phi|^2)
 /// over the active nodes of every chart jointly (conjugate gradients, deterministic). A first
 /// pass on the points outside the validation split picks the number of levels (the stopping
-/// rule); the result is then fitted on every point with that many levels. Deterministic
-/// whatever the thread count.
+/// rule); the result is then fitted on every point with that many levels. Targets marked
+/// `check` are never fitted: they only decide how many of those levels stay
+/// (check_improvement). Deterministic whatever the thread count.
 Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
                                const std::vector<DisplacementTarget>& targets,
                                const AdaptiveDisplacementOptions& options,

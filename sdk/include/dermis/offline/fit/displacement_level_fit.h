@@ -25,6 +25,9 @@ struct DisplacementTarget {
   /// Weight of the point's squared error in the least squares (> 0): a character's vertices
   /// weigh more than the samples between them (FitInput::weights).
   double weight = 1.0;
+  /// A check point: measured only, never fitted (FitAdaptiveDisplacement() keeps the levels
+  /// that bring the check points closest; FitInput::check_points).
+  bool check = false;
 };
 
 /// Options of DisplacementLevelFitter.

@@ -118,6 +118,12 @@ struct FitInput {
   /// between them, CharacterFitOptions::vertex_weight), or empty: every point 1. The other
   /// stages and the errors reported do not use it.
   std::vector<double> weights;
+  /// Check points (model units): points on the data's surface between `points`, projected and
+  /// optimised as they are but never fitted; the adaptive displacement fit drops the levels
+  /// after the last one that brought them closer (AdaptiveDisplacementOptions::
+  /// check_improvement). A character's low-poly part gets them between its samples
+  /// (CharacterFitOptions::check_points). Other displacement methods ignore them.
+  std::vector<Vec3> check_points;
 };
 
 /// Distances in the paper's unit: the data scaled so that its bounding box's largest side is 1.

@@ -1,0 +1,55 @@
+// Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
+// Check points of a character part (docs/characters.md, "Levels checked between the samples"):
+// uniform random points on its triangles from a fixed hash, so the result is the same on every
+// machine and thread count.
+#include "check_points.h"
+
+#include <cmath>
+
+namespace dermis::character {
+namespace {
+
+std::uint64_t SplitMix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+/// A uniform number in [0, 1) from the hash's state, which it advances.
+double Uniform(std::uint64_t* state) {
+  *state = SplitMix64(*state);
+  return static_cast<double>(*state >> 11) * 0x1.0p-53;
+}
+
+}  // namespace
+
+std::vector<Vec3> CheckPoints(const PolygonMesh& mesh, const ShadingSurface& shading,
+                              double spacing, double per_area, std::uint64_t seed) {
+  std::vector<Vec3> out;
+  if (!(spacing > 0.0) || !(per_area > 0.0) || !std::isfinite(spacing) ||
+      !std::isfinite(per_area)) {
+    return out;
+  }
+  const double density = per_area / (spacing * spacing);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (mesh.face_offsets[f + 1] - mesh.face_offsets[f] != 3) continue;
+    const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
+    const double area = 0.5 * glm::length(glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
+                                                     mesh.positions[v[2]] - mesh.positions[v[0]]));
+    const double expected = area * density;
+    if (!(expected > 0.0) || !std::isfinite(expected)) continue;
+    std::uint64_t state = SplitMix64(seed ^ SplitMix64(static_cast<std::uint64_t>(f)));
+    const double whole = std::floor(expected);
+    const auto count = static_cast<std::int64_t>(whole) + (Uniform(&state) < expected - whole);
+    for (std::int64_t k = 0; k < count; ++k) {
+      // Uniform over the triangle: the square root folds the unit square onto it.
+      const double r = std::sqrt(Uniform(&state)), s = Uniform(&state);
+      const double w[3] = {1.0 - r, r * (1.0 - s), r * s};
+      out.push_back(shading.Point(f, w));
+    }
+  }
+  return out;
+}
+
+}  // namespace dermis::character
