@@ -1,6 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 // The check points of a character part (sdk/src/offline/character/check_points.h): how many,
-// where (on the triangles, spread evenly), reproducible, and nothing from bad arguments.
+// where (on the triangles, spread evenly), reproducible, capped, and nothing from bad
+// arguments.
 #include "offline/character/check_points.h"
 
 #include <catch2/catch.hpp>
@@ -32,7 +33,7 @@ TEST_CASE("check points: about the count asked for, on the triangles, spread eve
   ShadingSurface flat;
   flat.Build(mesh, {}, 0.0, 0.0);
   // 2 per area 0.25^2: 40 / 0.0625 * 2 = 1280 points expected on the triangles' area 40.
-  const std::vector<Vec3> p = character::CheckPoints(mesh, flat, 0.25, 2.0, 7);
+  const std::vector<Vec3> p = character::CheckPoints(mesh, flat, 0.25, 2.0, 7, 1e6);
   CHECK(std::abs(static_cast<double>(p.size()) - 1280.0) <= 2.0);  // each face rounds once
   int left = 0, low = 0;
   for (const Vec3& q : p) {
@@ -49,14 +50,18 @@ TEST_CASE("check points: about the count asked for, on the triangles, spread eve
   CHECK(std::abs(left - 640) < 90);
   CHECK(std::abs(low - 640) < 90);
   // The same points every time; another seed, other points, as many.
-  CHECK(character::CheckPoints(mesh, flat, 0.25, 2.0, 7) == p);
-  const std::vector<Vec3> other = character::CheckPoints(mesh, flat, 0.25, 2.0, 8);
+  CHECK(character::CheckPoints(mesh, flat, 0.25, 2.0, 7, 1e6) == p);
+  const std::vector<Vec3> other = character::CheckPoints(mesh, flat, 0.25, 2.0, 8, 1e6);
   CHECK(other != p);
   CHECK(std::abs(static_cast<double>(other.size()) - 1280.0) <= 2.0);
+  // A density that would give more than max_points gives about that many: 1e9 asked, 100.
+  const std::size_t capped = character::CheckPoints(mesh, flat, 1e-4, 1.0, 7, 100.0).size();
+  CHECK(capped >= 99u);
+  CHECK(capped <= 101u);
   // A fraction of a point per face: the hash rounds it, on average right.
   std::size_t few = 0;
   for (std::uint64_t seed = 0; seed < 200; ++seed) {
-    few += character::CheckPoints(mesh, flat, 10.0, 0.5, seed).size();  // 0.1 per face
+    few += character::CheckPoints(mesh, flat, 10.0, 0.5, seed, 1e6).size();  // 0.1 per face
   }
   CHECK(few > 20);
   CHECK(few < 60);
@@ -68,17 +73,20 @@ TEST_CASE("check points: bad arguments give none") {
   flat.Build(mesh, {}, 0.0, 0.0);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  CHECK(character::CheckPoints(mesh, flat, 0.0, 1.0, 1).empty());
-  CHECK(character::CheckPoints(mesh, flat, -1.0, 1.0, 1).empty());
-  CHECK(character::CheckPoints(mesh, flat, nan, 1.0, 1).empty());
-  CHECK(character::CheckPoints(mesh, flat, inf, 1.0, 1).empty());
-  CHECK(character::CheckPoints(mesh, flat, 1.0, 0.0, 1).empty());
-  CHECK(character::CheckPoints(mesh, flat, 1.0, nan, 1).empty());
+  CHECK(character::CheckPoints(mesh, flat, 0.0, 1.0, 1, 1e6).empty());
+  CHECK(character::CheckPoints(mesh, flat, -1.0, 1.0, 1, 1e6).empty());
+  CHECK(character::CheckPoints(mesh, flat, nan, 1.0, 1, 1e6).empty());
+  CHECK(character::CheckPoints(mesh, flat, inf, 1.0, 1, 1e6).empty());
+  CHECK(character::CheckPoints(mesh, flat, 1.0, 0.0, 1, 1e6).empty());
+  CHECK(character::CheckPoints(mesh, flat, 1.0, nan, 1, 1e6).empty());
+  CHECK(character::CheckPoints(mesh, flat, 1.0, 1.0, 1, 0.0).empty());
+  CHECK(character::CheckPoints(mesh, flat, 1.0, 1.0, 1, nan).empty());
+  CHECK(character::CheckPoints(mesh, flat, 1.0, 1.0, 1, inf).empty());
   PolygonMesh empty;
   empty.face_offsets = {0};
   ShadingSurface none;
   none.Build(empty, {}, 0.0, 0.0);
-  CHECK(character::CheckPoints(empty, none, 1.0, 1.0, 1).empty());
+  CHECK(character::CheckPoints(empty, none, 1.0, 1.0, 1, 1e6).empty());
 }
 
 }  // namespace dermis

@@ -416,6 +416,7 @@ TEST_CASE("adaptive fit: check points drop the levels that swing between rows of
   // The rule as stated: the levels after the last one that brought the check points 1 % closer
   // are dropped (check_mean[L]: with L levels), and those kept bring them closer than none.
   const std::vector<double>& m = rw.check_mean;
+  REQUIRE(rw.levels >= 1);
   REQUIRE(m.size() > static_cast<std::size_t>(rw.levels) + 1);
   CHECK(m[static_cast<std::size_t>(rw.levels)] < 0.99 * m[static_cast<std::size_t>(rw.levels) - 1]);
   for (std::size_t k = static_cast<std::size_t>(rw.levels) + 1; k < m.size(); ++k) {
@@ -424,6 +425,7 @@ TEST_CASE("adaptive fit: check points drop the levels that swing between rows of
   CHECK(m[static_cast<std::size_t>(rw.levels)] < 0.99 * m[0]);
   // The kept levels are the first levels of the fit without check points (check points are
   // never fitted), and closer to the truth between the rows than all of them.
+  REQUIRE(with.values.size() <= without.values.size());
   CHECK(std::equal(with.values.begin(), with.values.end(), without.values.begin()));
   Status s;
   auto dw = BsplineDisplacement::Create(with, 1, &s);
@@ -448,10 +450,11 @@ TEST_CASE("adaptive fit: check points drop the levels that swing between rows of
 
 TEST_CASE("adaptive fit: check points that no level brings closer than none leave every level",
           "[adaptive]") {
-  // Check points on the surface without any level (their displacement 0: as on a part whose
-  // domain surface already passes through the flat sides the check points cover, while the
-  // levels are there for a few small places): no level brings them closer than none, so
-  // their mean cannot tell which level helps, and the fit is the one without them.
+  // Check points 0.001 off the surface without any level (as on a part whose domain surface
+  // already passes within that of the flat sides the check points cover, while the levels are
+  // there for a few small places): every level moves them away, so their mean cannot tell which
+  // level helps, and the fit is the one without them, also under an absolute coefficient
+  // budget (scaled by the fitted points only).
   const std::vector<double> half = {1.0};
   std::vector<DisplacementTarget> targets;
   test::Lcg rng(12);
@@ -462,7 +465,7 @@ TEST_CASE("adaptive fit: check points that no level brings closer than none leav
   const std::size_t fitted = targets.size();
   for (int n = 0; n < 50; ++n) {
     const Vec2 z(rng.Uniform(-1, 0.2), rng.Uniform(-1, 0.2));
-    DisplacementTarget t = Single(z, 0.0);
+    DisplacementTarget t = Single(z, 0.001);
     t.check = true;
     targets.push_back(t);
   }
@@ -478,9 +481,22 @@ TEST_CASE("adaptive fit: check points that no level brings closer than none leav
                                         targets.begin() + static_cast<std::ptrdiff_t>(fitted));
   REQUIRE(FitAdaptiveDisplacement(half, plain, o, &without, &rn).ok());
   CHECK(rw.check_points == 50);
+  REQUIRE(rw.check_mean.size() == static_cast<std::size_t>(rn.levels) + 1);
+  for (std::size_t k = 1; k < rw.check_mean.size(); ++k) {
+    CHECK(rw.check_mean[k] > rw.check_mean[0]);
+  }
   CHECK(rw.levels == rn.levels);
   CHECK(rw.stopped_by == rn.stopped_by);
   CHECK(with.values == without.values);
+  const std::int64_t unbudgeted = rn.coefficients;
+  o.max_coefficients = 60;
+  REQUIRE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());
+  REQUIRE(FitAdaptiveDisplacement(half, plain, o, &without, &rn).ok());
+  CHECK(unbudgeted > 60);
+  CHECK(rn.coefficients <= 60);
+  CHECK(rw.coefficients == rn.coefficients);
+  CHECK(with.values == without.values);
+  CHECK(with.nodes == without.nodes);
   // And a check improvement outside [0, 1) is refused.
   o.check_improvement = 1.0;
   CHECK_FALSE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());

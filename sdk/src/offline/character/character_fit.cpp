@@ -469,9 +469,10 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     // every level (CesiumMan and the demo creature: the same levels, 1.5 s more on the
     // creature).
     if (options.check_points > 0.0 && low_poly) {
-      input.check_points =
-          character::CheckPoints(dense, shading, edge / options.samples_per_control_edge,
-                                 options.check_points, kCheckPointSeed);
+      // At most as many as the points fitted: the rule compares means.
+      input.check_points = character::CheckPoints(
+          dense, shading, edge / options.samples_per_control_edge, options.check_points,
+          kCheckPointSeed, static_cast<double>(input.points.size()));
     }
   }
   input.mesh = &dense;

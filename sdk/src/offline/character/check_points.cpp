@@ -4,6 +4,7 @@
 // machine and thread count.
 #include "check_points.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dermis::character {
@@ -22,22 +23,32 @@ double Uniform(std::uint64_t* state) {
   return static_cast<double>(*state >> 11) * 0x1.0p-53;
 }
 
+/// The area of triangle f (0 for another face or a degenerate one).
+double TriangleArea(const PolygonMesh& mesh, Index f) {
+  if (mesh.face_offsets[f + 1] - mesh.face_offsets[f] != 3) return 0.0;
+  const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
+  const double area = 0.5 * glm::length(glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
+                                                   mesh.positions[v[2]] - mesh.positions[v[0]]));
+  return std::isfinite(area) ? area : 0.0;
+}
+
 }  // namespace
 
 std::vector<Vec3> CheckPoints(const PolygonMesh& mesh, const ShadingSurface& shading,
-                              double spacing, double per_area, std::uint64_t seed) {
+                              double spacing, double per_area, std::uint64_t seed,
+                              double max_points) {
   std::vector<Vec3> out;
-  if (!(spacing > 0.0) || !(per_area > 0.0) || !std::isfinite(spacing) ||
-      !std::isfinite(per_area)) {
+  if (!(spacing > 0.0) || !(per_area > 0.0) || !(max_points > 0.0) || !std::isfinite(spacing) ||
+      !std::isfinite(per_area) || !std::isfinite(max_points)) {
     return out;
   }
-  const double density = per_area / (spacing * spacing);
+  double total = 0.0;
+  for (Index f = 0; f < mesh.num_faces(); ++f) total += TriangleArea(mesh, f);
+  double density = per_area / (spacing * spacing);
+  if (total * density > max_points) density = max_points / total;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (mesh.face_offsets[f + 1] - mesh.face_offsets[f] != 3) continue;
-    const Index* v = &mesh.face_vertices[mesh.face_offsets[f]];
-    const double area = 0.5 * glm::length(glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
-                                                     mesh.positions[v[2]] - mesh.positions[v[0]]));
-    const double expected = area * density;
+    const double area = TriangleArea(mesh, f);
+    const double expected = std::min(area * density, max_points);
     if (!(expected > 0.0) || !std::isfinite(expected)) continue;
     std::uint64_t state = SplitMix64(seed ^ SplitMix64(static_cast<std::uint64_t>(f)));
     const double whole = std::floor(expected);

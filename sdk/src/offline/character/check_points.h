@@ -18,8 +18,11 @@ namespace dermis::character {
 /// average, a face's expected count rounded up or down by the hash, each at a barycentric
 /// position drawn uniformly over the face, on `shading` (the surface the data samples lie
 /// on). Unlike a grid's, their places share no line with AreaSamples()' rows, so they see what
-/// a displacement level does between those rows. Faces that are not triangles get none.
+/// a displacement level does between those rows. Faces that are not triangles get none. At
+/// most about `max_points` in all (> 0 and finite): a density that would give more is lowered
+/// to that.
 std::vector<Vec3> CheckPoints(const PolygonMesh& mesh, const ShadingSurface& shading,
-                              double spacing, double per_area, std::uint64_t seed);
+                              double spacing, double per_area, std::uint64_t seed,
+                              double max_points);
 
 }  // namespace dermis::character

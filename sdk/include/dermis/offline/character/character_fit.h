@@ -142,7 +142,9 @@ struct CharacterFitOptions {
   /// surface alone (AdaptiveDisplacementOptions::check_improvement): the finest levels follow
   /// the samples' rows and add nothing between them (docs/characters.md, "Levels checked
   /// between the samples"; the Fox: 29,687 -> 21,018 coefficients at the same distances and
-  /// normals). In [0, 64]; 0: none, every level the fitted points' rule keeps.
+  /// normals). At most as many as the part's fitted points (vertices and samples): the rule
+  /// compares means, and more would only cost time. In [0, 64]; 0: none, every level the
+  /// fitted points' rule keeps.
   double check_points = 1.0;
   /// In the same fits (a control mesh that keeps creases, or a part whose sharp edges are all
   /// shaded smooth) and when there are samples between the vertices, the weight of each source

@@ -25,8 +25,8 @@ struct DisplacementTarget {
   /// Weight of the point's squared error in the least squares (> 0): a character's vertices
   /// weigh more than the samples between them (FitInput::weights).
   double weight = 1.0;
-  /// A check point: measured only, never fitted (FitAdaptiveDisplacement() keeps the levels
-  /// that bring the check points closest; FitInput::check_points).
+  /// A check point: measured only, never fitted (FitAdaptiveDisplacement() drops the levels
+  /// after the last one that brought the check points closer; FitInput::check_points).
   bool check = false;
 };
 
