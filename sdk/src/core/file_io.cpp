@@ -16,18 +16,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "dermis/core/hash.h"
 #include "dermis/core/limits.h"
 
 namespace dermis {
 namespace {
-
-// SplitMix64: mixes a counter into well-spread bits for temporary-file names.
-std::uint64_t Mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
 
 // A new file beside `path`, named PATH.tmp.XXXXXXXX, created exclusively (O_EXCL) with mode
 // 0666, which the kernel reduces by the process umask: the file gets the permissions any
@@ -40,8 +33,8 @@ int CreateTemporary(const std::string& path, std::string* name) {
       static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
   static const char kDigits[] = "0123456789abcdefghijklmnopqrstuvwxyz";
   for (int attempt = 0; attempt < 100; ++attempt) {
-    std::uint64_t bits = Mix(now ^ (static_cast<std::uint64_t>(::getpid()) << 32) ^
-                             Mix(counter.fetch_add(1, std::memory_order_relaxed)));
+    std::uint64_t bits = SplitMix64(now ^ (static_cast<std::uint64_t>(::getpid()) << 32) ^
+                                    SplitMix64(counter.fetch_add(1, std::memory_order_relaxed)));
     std::string suffix(8, '0');
     for (char& c : suffix) {
       c = kDigits[bits % 36];

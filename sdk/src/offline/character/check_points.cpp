@@ -7,20 +7,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dermis/core/hash.h"
+
 namespace dermis::character {
 namespace {
-
-std::uint64_t SplitMix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
 
 /// A uniform number in [0, 1) from the hash's state, which it advances.
 double Uniform(std::uint64_t* state) {
   *state = SplitMix64(*state);
-  return static_cast<double>(*state >> 11) * 0x1.0p-53;
+  return HashToUnit(*state);
 }
 
 /// The area of triangle f (0 for another face or a degenerate one).

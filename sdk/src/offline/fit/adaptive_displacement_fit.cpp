@@ -10,23 +10,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dermis/core/hash.h"
 #include "dermis/core/parallel.h"
 
 namespace dermis {
-namespace {
-
-std::uint64_t SplitMix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-}  // namespace
-
 bool IsValidationPoint(std::size_t i, double fraction, std::uint64_t seed) {
   if (!(fraction > 0.0)) return false;
-  const double u = static_cast<double>(SplitMix64(seed ^ SplitMix64(i)) >> 11) * 0x1.0p-53;
+  const double u = HashToUnit(SplitMix64(seed ^ SplitMix64(i)));
   return u < fraction;
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "dermis/core/hash.h"
 #include "dermis/core/parallel.h"
 #include "dermis/offline/fit/boundary_cover.h"
 #include "dermis/offline/fit/control_fit.h"
@@ -42,13 +43,6 @@ double SecondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-std::uint64_t SplitMix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
 // Gathers the samples of the given points, in point order.
 std::vector<ChartSample> GatherSamples(const std::vector<PointFit>& fits, bool optimized) {
   std::vector<ChartSample> samples;
@@ -79,7 +73,7 @@ std::unique_ptr<BsplineDisplacement> MakeDisplacement(const ManifoldDomain& doma
 
 bool IsHeldOut(std::size_t i, double fraction, std::uint64_t seed) {
   if (!(fraction > 0.0)) return false;
-  const double u = static_cast<double>(SplitMix64(seed ^ SplitMix64(i)) >> 11) * 0x1.0p-53;
+  const double u = HashToUnit(SplitMix64(seed ^ SplitMix64(i)));
   return u < fraction;
 }
 
