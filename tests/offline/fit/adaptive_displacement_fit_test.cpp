@@ -74,6 +74,39 @@ struct LevelStore {
   }
 };
 
+// A check point (DisplacementTarget::check) at z with displacement delta.
+DisplacementTarget Check(Vec2 z, double delta) {
+  DisplacementTarget t = Single(z, delta);
+  t.check = true;
+  return t;
+}
+
+// A character's settings (no validation split, no budget per point), 2 threads.
+AdaptiveDisplacementOptions CharacterLike(int max_levels) {
+  AdaptiveDisplacementOptions o;
+  o.validation = 0.0;
+  o.max_coefficients_per_point = 0.0;
+  o.threads = 2;
+  o.max_levels = max_levels;
+  return o;
+}
+
+// The fits of `targets` (its check points from `fitted` on) with and without the check points.
+struct CheckedFits {
+  BsplineDisplacementData with, without;
+  AdaptiveDisplacementReport rw, rn;
+};
+CheckedFits FitWithAndWithout(const std::vector<double>& half,
+                              const std::vector<DisplacementTarget>& targets, std::size_t fitted,
+                              const AdaptiveDisplacementOptions& o) {
+  CheckedFits f;
+  REQUIRE(FitAdaptiveDisplacement(half, targets, o, &f.with, &f.rw).ok());
+  const std::vector<DisplacementTarget> plain(
+      targets.begin(), targets.begin() + static_cast<std::ptrdiff_t>(fitted));
+  REQUIRE(FitAdaptiveDisplacement(half, plain, o, &f.without, &f.rn).ok());
+  return f;
+}
+
 }  // namespace
 
 TEST_CASE("adaptive fit: the density criterion activates exactly the nodes the data support",
@@ -390,21 +423,11 @@ TEST_CASE("adaptive fit: check points drop the levels that swing between rows of
   test::Lcg rng(11);
   for (int n = 0; n < 400; ++n) {
     const Vec2 z(rng.Uniform(-1, 1), rng.Uniform(-1, 1));
-    DisplacementTarget t = Single(z, Smooth(z));
-    t.check = true;
-    targets.push_back(t);
+    targets.push_back(Check(z, Smooth(z)));
   }
-  AdaptiveDisplacementOptions o;
-  o.validation = 0.0;
-  o.max_coefficients_per_point = 0.0;
-  o.threads = 2;
-  o.max_levels = 7;
-  BsplineDisplacementData with, without;
-  AdaptiveDisplacementReport rw, rn;
-  REQUIRE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());
-  std::vector<DisplacementTarget> plain(targets.begin(),
-                                        targets.begin() + static_cast<std::ptrdiff_t>(fitted));
-  REQUIRE(FitAdaptiveDisplacement(half, plain, o, &without, &rn).ok());
+  const CheckedFits f = FitWithAndWithout(half, targets, fitted, CharacterLike(7));
+  const BsplineDisplacementData &with = f.with, &without = f.without;
+  const AdaptiveDisplacementReport &rw = f.rw, &rn = f.rn;
   INFO("levels with check points " << rw.levels << " (" << rw.stopped_by << "), without "
                                    << rn.levels << " (" << rn.stopped_by << ")");
   CHECK(rw.check_points == 400);
@@ -464,44 +487,31 @@ TEST_CASE("adaptive fit: check points that no level brings closer than none leav
   }
   const std::size_t fitted = targets.size();
   for (int n = 0; n < 50; ++n) {
-    const Vec2 z(rng.Uniform(-1, 0.2), rng.Uniform(-1, 0.2));
-    DisplacementTarget t = Single(z, 0.001);
-    t.check = true;
-    targets.push_back(t);
+    targets.push_back(Check(Vec2(rng.Uniform(-1, 0.2), rng.Uniform(-1, 0.2)), 0.001));
   }
-  AdaptiveDisplacementOptions o;
-  o.validation = 0.0;
-  o.max_coefficients_per_point = 0.0;
-  o.threads = 2;
-  o.max_levels = 5;
-  BsplineDisplacementData with, without;
-  AdaptiveDisplacementReport rw, rn;
-  REQUIRE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());
-  std::vector<DisplacementTarget> plain(targets.begin(),
-                                        targets.begin() + static_cast<std::ptrdiff_t>(fitted));
-  REQUIRE(FitAdaptiveDisplacement(half, plain, o, &without, &rn).ok());
-  CHECK(rw.check_points == 50);
-  REQUIRE(rw.check_mean.size() == static_cast<std::size_t>(rn.levels) + 1);
-  for (std::size_t k = 1; k < rw.check_mean.size(); ++k) {
-    CHECK(rw.check_mean[k] > rw.check_mean[0]);
+  AdaptiveDisplacementOptions o = CharacterLike(5);
+  const CheckedFits f = FitWithAndWithout(half, targets, fitted, o);
+  CHECK(f.rw.check_points == 50);
+  REQUIRE(f.rw.check_mean.size() == static_cast<std::size_t>(f.rn.levels) + 1);
+  for (std::size_t k = 1; k < f.rw.check_mean.size(); ++k) {
+    CHECK(f.rw.check_mean[k] > f.rw.check_mean[0]);
   }
-  CHECK(rw.levels == rn.levels);
-  CHECK(rw.stopped_by == rn.stopped_by);
-  CHECK(with.values == without.values);
-  const std::int64_t unbudgeted = rn.coefficients;
+  CHECK(f.rw.levels == f.rn.levels);
+  CHECK(f.rw.stopped_by == f.rn.stopped_by);
+  CHECK(f.with.values == f.without.values);
   o.max_coefficients = 60;
-  REQUIRE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());
-  REQUIRE(FitAdaptiveDisplacement(half, plain, o, &without, &rn).ok());
-  CHECK(unbudgeted > 60);
-  CHECK(rn.coefficients <= 60);
-  CHECK(rw.coefficients == rn.coefficients);
-  CHECK(with.values == without.values);
-  CHECK(with.nodes == without.nodes);
+  const CheckedFits b = FitWithAndWithout(half, targets, fitted, o);
+  CHECK(f.rn.coefficients > 60);
+  CHECK(b.rn.coefficients <= 60);
+  CHECK(b.rw.coefficients == b.rn.coefficients);
+  CHECK(b.with.values == b.without.values);
+  CHECK(b.with.nodes == b.without.nodes);
   // And a check improvement outside [0, 1) is refused.
+  BsplineDisplacementData data;
   o.check_improvement = 1.0;
-  CHECK_FALSE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());
+  CHECK_FALSE(FitAdaptiveDisplacement(half, targets, o, &data, nullptr).ok());
   o.check_improvement = -0.1;
-  CHECK_FALSE(FitAdaptiveDisplacement(half, targets, o, &with, &rw).ok());
+  CHECK_FALSE(FitAdaptiveDisplacement(half, targets, o, &data, nullptr).ok());
 }
 
 TEST_CASE("adaptive fit: truncating to L levels is exactly the L-level fit", "[adaptive]") {

@@ -37,13 +37,16 @@ std::vector<Vec3> CheckPoints(const PolygonMesh& mesh, const ShadingSurface& sha
       !std::isfinite(per_area) || !std::isfinite(max_points)) {
     return out;
   }
+  std::vector<double> area(static_cast<std::size_t>(mesh.num_faces()));
   double total = 0.0;
-  for (Index f = 0; f < mesh.num_faces(); ++f) total += TriangleArea(mesh, f);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    area[static_cast<std::size_t>(f)] = TriangleArea(mesh, f);
+    total += area[static_cast<std::size_t>(f)];
+  }
   double density = per_area / (spacing * spacing);
   if (total * density > max_points) density = max_points / total;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    const double area = TriangleArea(mesh, f);
-    const double expected = std::min(area * density, max_points);
+    const double expected = std::min(area[static_cast<std::size_t>(f)] * density, max_points);
     if (!(expected > 0.0) || !std::isfinite(expected)) continue;
     std::uint64_t state = SplitMix64(seed ^ SplitMix64(static_cast<std::uint64_t>(f)));
     const double whole = std::floor(expected);

@@ -172,7 +172,6 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
         if (fit.nodes(c).empty()) continue;
         nodes[static_cast<std::size_t>(k)][c] = fit.nodes(c);
         values[static_cast<std::size_t>(k)][c] = fit.values(c);
-        data.num_levels[c] = static_cast<std::uint8_t>(k + 1);
       }
     }
   }
@@ -195,12 +194,13 @@ Status FitAdaptiveDisplacement(const std::vector<double>& half_extent,
       rep.stopped_by = "check points";
       levels = keep;
       rep.level_nodes.resize(static_cast<std::size_t>(keep));
-      for (std::size_t c = 0; c < nc; ++c) {
-        std::uint8_t l = 0;
-        for (int k = 0; k < keep; ++k) {
-          if (!nodes[static_cast<std::size_t>(k)][c].empty()) l = static_cast<std::uint8_t>(k + 1);
-        }
-        data.num_levels[c] = l;
+    }
+  }
+  // Each chart's levels: up to its last non-empty one among those kept.
+  for (std::size_t c = 0; c < nc; ++c) {
+    for (int k = 0; k < levels; ++k) {
+      if (!nodes[static_cast<std::size_t>(k)][c].empty()) {
+        data.num_levels[c] = static_cast<std::uint8_t>(k + 1);
       }
     }
   }
