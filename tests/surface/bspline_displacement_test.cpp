@@ -5,6 +5,7 @@
 // the validation of bad data.
 #include "dermis/surface/bspline_displacement.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
@@ -173,6 +174,79 @@ TEST_CASE("displacement: sparse gradients match finite differences; a dense leve
     d2->Evaluate(0, z, &v, &g);
     CHECK(v == Approx(expected).margin(1e-12));
   }
+}
+
+TEST_CASE("displacement: a fine level with fewer nodes than rows needs no row table",
+          "[displacement]") {
+  // A sparse level's nodes are found through a table of its lattice rows (2^k + 4 starts), or,
+  // with fewer nodes than rows, by searching them whole: the same nodes, the same sums, without
+  // the table (4 (2^9 + 4) = 2,064 bytes at level 9 for the 3 nodes below).
+  test::Lcg rng(11);
+  const double half = 1.1;
+  std::vector<std::vector<Level>> charts = {RandomLevels(9, 1.0, &rng)};
+  // Levels 0..8 dense; level 9 (515 x 515 nodes, 515 rows) with 3 nodes, one row shared by
+  // two; a second chart whose level 5 (35 rows) has exactly 35 nodes (a table) and level 6
+  // (67 rows) 66 (none).
+  Level fine;
+  const std::uint32_t stride9 = (1u << 9) + 3;
+  for (std::uint32_t n : {200u * stride9 + 250u, 200u * stride9 + 252u, 300u * stride9 + 10u}) {
+    fine.nodes.push_back(n);
+    fine.values.push_back(static_cast<float>(rng.Uniform(-1.0, 1.0)));
+  }
+  charts[0].push_back(fine);
+  charts.push_back(RandomLevels(5, 1.0, &rng));
+  for (int k : {5, 6}) {
+    const std::uint32_t rows = (1u << k) + 3;
+    const std::uint32_t count = k == 5 ? rows : rows - 1;
+    Level l;
+    for (std::uint32_t n = 0; n < count; ++n) {
+      l.nodes.push_back(n * (rows + 1) % (rows * rows));  // spread over the rows
+      l.values.push_back(static_cast<float>(rng.Uniform(-0.1, 0.1)));
+    }
+    std::vector<std::size_t> order(l.nodes.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return l.nodes[a] < l.nodes[b]; });
+    Level sorted;
+    for (std::size_t i : order) {
+      sorted.nodes.push_back(l.nodes[i]);
+      sorted.values.push_back(l.values[i]);
+    }
+    charts[1].push_back(sorted);
+  }
+  Status s;
+  auto d = BsplineDisplacement::Create(Additive(charts, half), 2, &s);
+  INFO(s.message());
+  REQUIRE(d);
+  for (int n = 0; n < 400; ++n) {
+    // Half the points near the fine nodes (lattice coordinates 249..251, 199; 9, 299).
+    Vec2 z(rng.Uniform(-1.1, 1.1), rng.Uniform(-1.1, 1.1));
+    if (n % 2 == 0) {
+      const double cell = 2.0 * half / 512.0;
+      const bool first = n % 4 == 0;
+      z = Vec2(-half + cell * ((first ? 250.0 : 9.0) + rng.Uniform(-2.0, 2.0)),
+               -half + cell * ((first ? 199.0 : 299.0) + rng.Uniform(-2.0, 2.0)));
+    }
+    for (std::size_t c = 0; c < charts.size(); ++c) {
+      double expected = 0.0;
+      for (std::size_t k = 0; k < charts[c].size(); ++k) {
+        expected +=
+            BruteLevel(charts[c][k].nodes, charts[c][k].values, static_cast<int>(k), half, z);
+      }
+      double v = 0.0;
+      Vec2 g;
+      d->Evaluate(static_cast<Index>(c), z, &v, &g);
+      CHECK(v == Approx(expected).margin(1e-12));
+    }
+  }
+  // The fine level costs its nodes, values and per-level entries, not a row table.
+  std::vector<std::vector<Level>> coarse = charts;
+  coarse[0].pop_back();
+  auto dc = BsplineDisplacement::Create(Additive(coarse, half), 2, &s);
+  REQUIRE(dc);
+  const std::size_t extra = d->memory_bytes() - dc->memory_bytes();
+  INFO("bytes for the 3-node level 9: " << extra);
+  CHECK(extra < 1000);
 }
 
 TEST_CASE("displacement: invalid additive data is rejected with a reason", "[displacement]") {

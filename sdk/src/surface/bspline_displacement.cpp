@@ -164,9 +164,16 @@ std::unique_ptr<BsplineDisplacement> BsplineDisplacement::Create(BsplineDisplace
           d->level_node_[g] = -1;
           continue;
         }
-        // Row table of a sparse level: rows+1 starts relative to its first node.
+        // Row table of a sparse level: rows+1 starts relative to its first node; none for a
+        // level with fewer nodes than rows (a fine level of a few nodes near a crease would
+        // otherwise cost 4 (2^k + 4) bytes for them).
         d->level_node_[g] = node;
         const std::int64_t stride = (std::int64_t{1} << k) + 3;
+        if (count < stride) {
+          d->level_row_[g] = -1;
+          node += count;
+          continue;
+        }
         std::int32_t at = 0;
         for (std::int64_t row = 0; row <= stride; ++row) {
           while (at < count &&
@@ -229,12 +236,13 @@ void BsplineDisplacement::AddLevel(std::size_t g, int level, double r, Vec2 z, d
     }
   } else {  // sparse: the listed nodes of rows j..j+3, columns i..i+3
     const std::uint32_t* nodes = data_.nodes.data() + level_node_[g];
-    const std::int32_t* rows = row_start_.data() + level_row_[g];
+    const std::int32_t* rows = level_row_[g] >= 0 ? row_start_.data() + level_row_[g] : nullptr;
+    const std::uint32_t* end = nodes + data_.level_counts[g];
     for (int l = 0; l < 4; ++l) {
       const int row = j + l;
       const auto first = static_cast<std::uint32_t>(row * stride + i);
-      const std::uint32_t* b = nodes + rows[row];
-      const std::uint32_t* e = nodes + rows[row + 1];
+      const std::uint32_t* b = rows ? nodes + rows[row] : nodes;
+      const std::uint32_t* e = rows ? nodes + rows[row + 1] : end;
       b = std::lower_bound(b, e, first);
       double a = 0.0, da = 0.0;
       for (; b != e && *b < first + 4; ++b) {

@@ -105,7 +105,8 @@ class BsplineDisplacement final : public Displacement {
   // Derived index (kAdditive): per chart, its first entry in the per-level arrays; per level,
   // its first value, its first node (-1: dense) and its first row in row_start_ (the sparse
   // level's nodes of lattice row r are nodes[node_begin + row_start_[row + r] ..
-  // node_begin + row_start_[row + r + 1])).
+  // node_begin + row_start_[row + r + 1]); -1: no row table, for a level with fewer nodes
+  // than its lattice has rows, whose nodes are searched whole: the table would outweigh them).
   std::vector<std::int64_t> chart_level_;
   std::vector<std::int64_t> level_value_, level_node_, level_row_;
   std::vector<std::int32_t> row_start_;
