@@ -973,6 +973,57 @@ TEST_CASE("character: edges shaded smooth are not creases but hard edges are") {
   CHECK(creases(flat, true) == 48);
 }
 
+TEST_CASE("character: a flat-shaded part keeps its smooth-shaded folds as creases") {
+  // The bar bent by 40 degrees, shaded smooth across the bend: its part takes the flat
+  // triangles (no curved surface's normals come closer to its shading normals), so the fit
+  // follows the flat sides, and the bend, sharper than the crease angle (0.5 rad), is one of
+  // their creases whatever its shading (docs/characters.md, "Folds of a flat-shaded part").
+  // Asked for the flat triangles by name (shading_shape 0), the part keeps the old rounding.
+  const Asset bar = BentBar(40.0 * 3.14159265358979323846 / 180.0);
+  auto fit = [&](double shape, ControlMeshInfo* info) {
+    CharacterFitOptions options;
+    options.fit.threads = 2;
+    options.shading_shape = shape;
+    *info = FitControlMesh(bar, options);
+    return FitLevel8Lod(bar, options);
+  };
+  ControlMeshInfo folded, rounded;
+  const AssetPrimitive fp = fit(-1.0, &folded), rp = fit(0.0, &rounded);
+  CHECK(folded.shading_shape == 0.0);
+  CHECK(rounded.shading_shape == 0.0);
+  // The crease-aware remesh's own creases: the bar's 4 long hard edges, 6 source edges each,
+  // and, folded, the bend across the two sides it turns (the other two stay in their planes).
+  auto creases = [&](double shape) {
+    CharacterFitOptions options;
+    options.fit.threads = 2;
+    options.shading_shape = shape;
+    options.compare_without_creases = false;
+    return FitControlMesh(bar, options).quality.crease_edges;
+  };
+  const int with_bend = creases(-1.0), without_bend = creases(0.0);
+  INFO("crease edges: " << with_bend << " with the bend, " << without_bend << " without");
+  CHECK(without_bend == 24);
+  CHECK(with_bend >= without_bend + 2);
+  // Before the bend (x <= 1.3, where no point of the second half lies), the sides are the
+  // square |y|, |z| <= 0.2: how far the lod surface leaves them.
+  auto off_square = [](const AssetPrimitive& prim) {
+    double worst = 0.0;
+    int count = 0;
+    for (const glm::vec3& p : prim.positions) {
+      if (p.x < 0.5f || p.x > 1.3f) continue;
+      worst =
+          std::max(worst, std::abs(std::max(std::abs(double(p.y)), std::abs(double(p.z))) - 0.2));
+      ++count;
+    }
+    REQUIRE(count > 100);
+    return worst;
+  };
+  const double f = off_square(fp), r = off_square(rp);
+  INFO("largest distance from the sides before the bend: folded " << f << ", rounded " << r);
+  CHECK(f < 1e-4);
+  CHECK(r > 10.0 * f);
+}
+
 TEST_CASE("character: a tube of long smooth-shaded slivers comes out round along its length") {
   // 32 flat sides round the unit circle, 10 long in one row of quads: 64 slivers 0.196 wide
   // and 10 long, shaded smooth, as RiggedSimple's tube is.

@@ -327,9 +327,16 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
       deviation = d;
     }
   }
+  // A smooth-shaded sharp edge is rounded only where the shading describes a curved surface:
+  // where the automatic choice took the flat triangles (no curved surface's normals come
+  // closer to the shading normals), the fit follows the flat triangles, whose sharp edges are
+  // then its creases whatever their shading (RiggedFigure's elbows and knees, folds of 27-38
+  // degrees across box limbs: rounded, they dented the faces beside them; docs/characters.md,
+  // "Folds of a flat-shaded part"). A shape the caller gave keeps the smooth edges rounded.
+  const bool shading_is_curved = shape > 0.0 || options.shading_shape >= 0.0;
   const std::vector<std::array<std::uint32_t, 2>> no_edges;
   const std::vector<std::array<std::uint32_t, 2>>& smooth_edges =
-      options.creases_follow_shading ? shading.smooth_edges() : no_edges;
+      options.creases_follow_shading && shading_is_curved ? shading.smooth_edges() : no_edges;
   // Whether the part turns sharply anywhere (shaded smooth or not), and whether a hard crease
   // is left (the remesher's test, whatever remesh_creases says); `creases` is that where the
   // control mesh keeps them.
