@@ -103,8 +103,10 @@ struct CharacterFitOptions {
   /// takes, of 0, 0.25, 0.5 and 0.75, the shape whose surface's own normals come closest to
   /// its shading normals (ShadingSurface::NormalDeviation; the smaller on a tie): normals
   /// averaged across the bends of long flat facets (a box-modelled figure shaded smooth) make
-  /// Phong's surface bumpier than the facets, normals of a round limb make it rounder. The
-  /// fit report gives the shape taken (ControlMeshInfo::shading_shape).
+  /// Phong's surface bumpier than the facets, normals of a round limb make it rounder. Where
+  /// that choice is the flat triangles, the part's sharp edges shaded smooth are creases too
+  /// (creases_follow_shading). The fit report gives the shape taken
+  /// (ControlMeshInfo::shading_shape).
   double shading_shape = -1.0;
   /// The most the shading surface departs from the flat triangles at one edge (its term at the
   /// edge's midpoint), as a fraction of the part's bounding-box diagonal, a third of the 0.75 %
@@ -122,8 +124,11 @@ struct CharacterFitOptions {
   /// edges are all shaded smooth gets crease_smoothing and vertex_weight, so its facets' kinks
   /// are rounded, as its renderer draws them, instead of followed with ripples. A hard edge
   /// (normals split across it) and a primitive without normals keep their creases
-  /// (docs/characters.md, "Smooth-shaded parts follow their shading"). false: every sharp edge is a
-  /// crease (before 2026-12-04's seventh session).
+  /// (docs/characters.md, "Smooth-shaded parts follow their shading"). Only on a part whose
+  /// shading surface is curved, or was given (shading_shape >= 0): a part that takes the flat
+  /// triangles by the automatic choice follows them, and their sharp edges are its creases
+  /// whatever their shading (docs/characters.md, "Folds of a flat-shaded part"). false: every
+  /// sharp edge is a crease (before 2026-12-04's seventh session).
   bool creases_follow_shading = true;
   /// The displacement levels' thin-plate weight (AdaptiveDisplacementOptions::smoothing) on a
   /// control mesh that keeps creases, for a part that has some, and on a part whose sharp edges
