@@ -239,7 +239,8 @@ TEST_CASE("displacement: a fine level with fewer nodes than rows needs no row ta
       CHECK(v == Approx(expected).margin(1e-12));
     }
   }
-  // The fine level costs its nodes, values and per-level entries, not a row table.
+  // The fine level costs its nodes, values, per-level entries and the arrays' growth (about
+  // 100 bytes with libstdc++), not a row table (2,064 bytes, about 3.5 KB with its growth).
   std::vector<std::vector<Level>> coarse = charts;
   coarse[0].pop_back();
   auto dc = BsplineDisplacement::Create(Additive(coarse, half), 2, &s);

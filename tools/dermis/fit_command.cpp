@@ -644,8 +644,10 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "the Phong tessellation of its shading normals with this shape factor (0: "
                   "the flat triangles; auto: per part, the one of 0, 0.25, 0.5 and 0.75 whose "
                   "surface's normals come closest to the shading normals): the samples and the "
-                  "control vertices lie on it; hard edges and flat-shaded triangles stay flat "
-                  "(docs/characters.md)")
+                  "control vertices lie on it; hard edges and flat-shaded triangles stay flat. "
+                  "Where auto takes 0, the part's sharp edges shaded smooth are creases too; a "
+                  "number given keeps them rounded (docs/characters.md, \"Folds of a "
+                  "flat-shaded part\")")
       ->check([](const std::string& v) -> std::string {
         if (v == "auto") return "";
         char* end = nullptr;
@@ -689,7 +691,8 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
   cmd->add_flag("--creases-ignore-shading", args->creases_ignore_shading,
                 "Characters: every edge sharper than the crease angle is a crease, even where the "
                 "source shades it smooth (by default such an edge is rounded as its renderer "
-                "draws it; docs/characters.md, \"Smooth-shaded parts follow their shading\")");
+                "draws it on a part whose shading surface is curved or given by --shading-shape; "
+                "docs/characters.md, \"Smooth-shaded parts follow their shading\")");
   cmd->add_flag("--creases-closed", args->creases_closed,
                 "Characters: keep hard creases closed (rounded by the smooth surface, with support "
                 "rows beside closed loops) instead of cutting the control mesh open along them "

@@ -121,7 +121,7 @@ struct CharacterFitOptions {
   /// smooth (its two
   /// triangles carry the same NORMAL at each of its ends) is not a crease: neither a control
   /// edge (QuadRemeshOptions::smooth_edges) nor an edge with crease_samples; a part whose sharp
-  /// edges are all shaded smooth gets crease_smoothing and vertex_weight, so its facets' kinks
+  /// edges are all so gets crease_smoothing and vertex_weight, so its facets' kinks
   /// are rounded, as its renderer draws them, instead of followed with ripples. A hard edge
   /// (normals split across it) and a primitive without normals keep their creases
   /// (docs/characters.md, "Smooth-shaded parts follow their shading"). Only on a part whose
@@ -132,7 +132,7 @@ struct CharacterFitOptions {
   bool creases_follow_shading = true;
   /// The displacement levels' thin-plate weight (AdaptiveDisplacementOptions::smoothing) on a
   /// control mesh that keeps creases, for a part that has some, and on a part whose sharp edges
-  /// are all shaded smooth (creases_follow_shading); < 0: fit.displacement's. There
+  /// are all shaded smooth and rounded (creases_follow_shading); < 0: fit.displacement's. There
   /// the creases lie on control edges and the displacement need not carry them, and with the
   /// light smoothing of fit.displacement the finest levels ripple between the samples (a few
   /// per control edge), which the shading shows though no distance does (docs/characters.md,
