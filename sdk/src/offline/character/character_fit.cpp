@@ -330,9 +330,10 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // A smooth-shaded sharp edge is rounded only where the shading describes a curved surface:
   // where the automatic choice took the flat triangles (no curved surface's normals come
   // closer to the shading normals), the fit follows the flat triangles, whose sharp edges are
-  // then its creases whatever their shading (RiggedFigure's elbows and wrists, folds of 27-38
-  // degrees across box limbs: rounded, they dented the faces beside them; docs/characters.md,
-  // "Folds of a flat-shaded part"). A shape the caller gave keeps the smooth edges rounded.
+  // then its creases whatever their shading (RiggedFigure's shoulders, elbows, wrists and
+  // knees, folds of 30-38 degrees across box limbs: rounded, they dented the faces beside them;
+  // docs/characters.md, "Folds of a flat-shaded part"). A shape the caller gave keeps the smooth
+  // edges rounded.
   const bool shading_is_curved = shape > 0.0 || options.shading_shape >= 0.0;
   const std::vector<std::array<std::uint32_t, 2>> no_edges;
   const std::vector<std::array<std::uint32_t, 2>>& smooth_edges =
