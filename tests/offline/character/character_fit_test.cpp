@@ -297,14 +297,18 @@ double BoxDistance(const glm::dvec3& p) {
 }
 
 /// Fits a one-part asset and returns its level-8 lod surface (positions and normals); the
-/// part's coefficient count in `coefficients` if given.
+/// part's coefficient count in `coefficients` and its control mesh report in `info` if given.
 AssetPrimitive FitLevel8Lod(const Asset& asset, const CharacterFitOptions& options,
-                            std::int64_t* coefficients = nullptr) {
+                            std::int64_t* coefficients = nullptr, ControlMeshInfo* info = nullptr) {
   Character ch;
   CharacterFitReport report;
   REQUIRE(FitCharacter(asset, options, &ch, &report).ok());
   REQUIRE(report.parts_fitted == 1);
   if (coefficients) *coefficients = ch.parts[0].fit.coefficients;
+  if (info) {
+    REQUIRE(report.part_control_meshes.size() == 1u);
+    *info = report.part_control_meshes[0];
+  }
   CharacterExportOptions eo;
   eo.level = 8;
   Asset lod;
@@ -984,8 +988,7 @@ TEST_CASE("character: a flat-shaded part keeps its smooth-shaded folds as crease
     CharacterFitOptions options;
     options.fit.threads = 2;
     options.shading_shape = shape;
-    *info = FitControlMesh(bar, options);
-    return FitLevel8Lod(bar, options);
+    return FitLevel8Lod(bar, options, nullptr, info);
   };
   ControlMeshInfo folded, rounded;
   const AssetPrimitive fp = fit(-1.0, &folded), rp = fit(0.0, &rounded);

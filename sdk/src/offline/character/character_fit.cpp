@@ -334,10 +334,10 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
   // knees, folds of 30-38 degrees across box limbs: rounded, they dented the faces beside them;
   // docs/characters.md, "Folds of a flat-shaded part"). A shape the caller gave keeps the smooth
   // edges rounded.
-  const bool shading_is_curved = shape > 0.0 || options.shading_shape >= 0.0;
+  const bool round_smooth_edges = shape > 0.0 || options.shading_shape >= 0.0;
   const std::vector<std::array<std::uint32_t, 2>> no_edges;
   const std::vector<std::array<std::uint32_t, 2>>& smooth_edges =
-      options.creases_follow_shading && shading_is_curved ? shading.smooth_edges() : no_edges;
+      options.creases_follow_shading && round_smooth_edges ? shading.smooth_edges() : no_edges;
   // Whether the part turns sharply anywhere (shaded smooth or not), and whether a hard crease
   // is left (the remesher's test, whatever remesh_creases says); `creases` is that where the
   // control mesh keeps them.
