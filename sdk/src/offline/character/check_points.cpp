@@ -31,8 +31,9 @@ double TriangleArea(const PolygonMesh& mesh, Index f) {
 
 std::vector<Vec3> CheckPoints(const PolygonMesh& mesh, const ShadingSurface& shading,
                               double spacing, double per_area, std::uint64_t seed,
-                              double max_points) {
+                              double max_points, std::vector<Vec3>* normals) {
   std::vector<Vec3> out;
+  if (normals) normals->clear();
   if (!(spacing > 0.0) || !(per_area > 0.0) || !(max_points > 0.0) || !std::isfinite(spacing) ||
       !std::isfinite(per_area) || !std::isfinite(max_points)) {
     return out;
@@ -56,6 +57,7 @@ std::vector<Vec3> CheckPoints(const PolygonMesh& mesh, const ShadingSurface& sha
       const double r = std::sqrt(Uniform(&state)), s = Uniform(&state);
       const double w[3] = {1.0 - r, r * (1.0 - s), r * s};
       out.push_back(shading.Point(f, w));
+      if (normals) normals->push_back(shading.Normal(f, w));
     }
   }
   return out;

@@ -20,9 +20,10 @@ namespace dermis::character {
 /// on). Unlike a grid's, their places share no line with AreaSamples()' rows, so they see what
 /// a displacement level does between those rows. Faces that are not triangles get none. At
 /// most about `max_points` in all (> 0 and finite): a density that would give more is lowered
-/// to that.
+/// to that. With `normals` not null it receives each point's shading normal
+/// (ShadingSurface::Normal(); zero on a face without normals), one per point.
 std::vector<Vec3> CheckPoints(const PolygonMesh& mesh, const ShadingSurface& shading,
                               double spacing, double per_area, std::uint64_t seed,
-                              double max_points);
+                              double max_points, std::vector<Vec3>* normals = nullptr);
 
 }  // namespace dermis::character

@@ -123,6 +123,15 @@ Vec3 ShadingSurface::Point(Index f, const double w[3]) const {
   return p + shape_ * move;
 }
 
+Vec3 ShadingSurface::Normal(Index f, const double w[3]) const {
+  const std::size_t fi = static_cast<std::size_t>(f);
+  if (!shaded_[fi]) return Vec3(0.0);
+  const Vec3 n =
+      w[0] * normals_[3 * fi] + w[1] * normals_[3 * fi + 1] + w[2] * normals_[3 * fi + 2];
+  const double ln = glm::length(n);
+  return ln > 1e-12 && std::isfinite(ln) ? n / ln : Vec3(0.0);
+}
+
 double ShadingSurface::NormalDeviation() const {
   // Each face split 4 x 4 into 16 triangles of equal area, one point at each one's centroid.
   constexpr int kSplit = 4;

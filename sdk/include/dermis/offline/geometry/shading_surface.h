@@ -41,6 +41,10 @@ class ShadingSurface {
   /// The point of face `f` at barycentric weights `w` (w[k] for its k-th corner, summing to 1).
   /// Build() must have been called.
   Vec3 Point(Index f, const double w[3]) const;
+  /// The shading normal of face `f` at barycentric weights `w`: the corners' normals
+  /// interpolated (sum w_k n_k) and normalised, as a renderer shades the source; the zero
+  /// vector on a face without normals or where they cancel. Build() must have been called.
+  Vec3 Normal(Index f, const double w[3]) const;
   /// How far this surface's own normals are from the shading normals it was built from: the
   /// mean angle (radians, by area, over the faces with normals; 0 where there are none)
   /// between the lines of the surface's normal and of the interpolated shading normal
