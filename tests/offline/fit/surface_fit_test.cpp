@@ -202,31 +202,65 @@ TEST_CASE("fit: a bumpy sphere over a cube control mesh is recovered") {
   CHECK(worst < 5e-3);
 }
 
+// The bumpy sphere whose rings of vertices are moved off it along the radius by 0.5 % in turn
+// (the finest levels follow them and swing between them), on a cube's control mesh, fitted as a
+// character's part is: every point fitted, no validation split. The check point tests share it.
+struct RingsOff {
+  PolygonMesh dense = BumpySphereMesh(80, 40, 0.05);
+  PolygonMesh control = Cube(0.62);
+  FitInput Input() const {
+    FitInput input;
+    input.points = dense.positions;
+    for (std::size_t i = 0; i < input.points.size(); ++i) {
+      input.points[i] *= (i / 80) % 2 == 0 ? 1.005 : 0.995;
+    }
+    input.mesh = &dense;
+    input.control = &control;
+    return input;
+  }
+  static FitOptions Options() {
+    FitOptions options;
+    options.threads = 2;
+    options.holdout = 0.0;
+    options.displacement.adaptive.validation = 0.0;
+    return options;
+  }
+  // The analytic surface's point between the vertices for check point (i, j), i < 40, 0 < j < 20.
+  static Vec3 CheckPoint(int i, int j) {
+    return Bumpy(2.0 * M_PI * (i + 0.37) / 40.0, M_PI * (j + 0.41) / 20.0, 0.05);
+  }
+};
+
+// `kept` is `full`'s first `levels` levels: the same value at points of the cube's 8 charts.
+void CheckFirstLevels(const BsplineDisplacement& full, int levels,
+                      const BsplineDisplacement& kept) {
+  const TruncatedDisplacement truncated(&full, levels);
+  for (Index c = 0; c < 8; ++c) {
+    for (int k = 0; k < 25; ++k) {
+      const Vec2 z(-0.3 + 0.15 * (k % 5), -0.3 + 0.15 * (k / 5));
+      double a = 0.0, b = 0.0;
+      Vec2 ga, gb;
+      truncated.Evaluate(c, z, &a, &ga);
+      kept.Evaluate(c, z, &b, &gb);
+      CHECK(a == Approx(b).margin(1e-15));
+    }
+  }
+}
+
 TEST_CASE("fit: check points are projected, never fitted, and only truncate the levels") {
   // The bumpy sphere as above, its rings of vertices moved off it along the radius by 0.5 %
   // in turn (the finest levels follow them and swing between them), fitted as a character's
   // part is (no validation split), once without and once with check points on the analytic
   // surface between the vertices.
-  const PolygonMesh dense = BumpySphereMesh(80, 40, 0.05);
-  const PolygonMesh control = Cube(0.62);
-  FitInput input;
-  input.points = dense.positions;
-  for (std::size_t i = 0; i < input.points.size(); ++i) {
-    input.points[i] *= (i / 80) % 2 == 0 ? 1.005 : 0.995;
-  }
-  input.mesh = &dense;
-  input.control = &control;
-  FitOptions options;
-  options.threads = 2;
-  options.holdout = 0.0;
-  options.displacement.adaptive.validation = 0.0;
+  const RingsOff r;
+  FitInput input = r.Input();
+  const FitOptions options = RingsOff::Options();
   FittedSurface plain_fit, checked_fit;
   FitReport plain, checked;
   REQUIRE(FitSurface(input, options, &plain_fit, &plain).ok());
   for (int i = 0; i < 40; ++i) {
     for (int j = 1; j < 20; ++j) {
-      input.check_points.push_back(
-          Bumpy(2.0 * M_PI * (i + 0.37) / 40.0, M_PI * (j + 0.41) / 20.0, 0.05));
+      input.check_points.push_back(RingsOff::CheckPoint(i, j));
     }
   }
   REQUIRE(FitSurface(input, options, &checked_fit, &checked).ok());
@@ -249,17 +283,128 @@ TEST_CASE("fit: check points are projected, never fitted, and only truncate the 
   const BsplineDisplacement* kept = checked_fit.displacement.get();
   REQUIRE(full);
   REQUIRE(kept);
-  const TruncatedDisplacement truncated(full, dc.levels);
-  for (Index c = 0; c < 8; ++c) {
-    for (int k = 0; k < 25; ++k) {
-      const Vec2 z(-0.3 + 0.15 * (k % 5), -0.3 + 0.15 * (k / 5));
-      double a = 0.0, b = 0.0;
-      Vec2 ga, gb;
-      truncated.Evaluate(c, z, &a, &ga);
-      kept->Evaluate(c, z, &b, &gb);
-      CHECK(a == b);
+  CheckFirstLevels(*full, dc.levels, *kept);
+}
+
+TEST_CASE("fit: check normals drop the trailing levels that turn the surface's normals away") {
+  // The set-up above, the check points now carrying the analytic surface's normals
+  // (FitInput::check_normals; docs/characters.md, "Levels checked by the shading"): after the
+  // distance rule, the trailing levels whose normals stray further from them are dropped.
+  const RingsOff r;
+  FitInput input = r.Input();
+  const FitOptions options = RingsOff::Options();
+  for (int i = 0; i < 40; ++i) {
+    for (int j = 1; j < 20; ++j) {
+      const double t = 2.0 * M_PI * (i + 0.37) / 40.0, p = M_PI * (j + 0.41) / 20.0, h = 1e-6;
+      input.check_points.push_back(Bumpy(t, p, 0.05));
+      // The normal from central differences of the analytic surface, outwards.
+      const Vec3 n = glm::normalize(glm::cross(Bumpy(t + h, p, 0.05) - Bumpy(t - h, p, 0.05),
+                                               Bumpy(t, p + h, 0.05) - Bumpy(t, p - h, 0.05)));
+      input.check_normals.push_back(glm::dot(n, input.check_points.back()) > 0.0 ? n : -n);
     }
   }
+  FittedSurface distance_fit, shading_fit;
+  FitReport distance, shading;
+  FitInput no_normals = input;
+  no_normals.check_normals.clear();
+  REQUIRE(FitSurface(no_normals, options, &distance_fit, &distance).ok());
+  REQUIRE(FitSurface(input, options, &shading_fit, &shading).ok());
+  const AdaptiveDisplacementReport &dd = distance.displacement_fit, &ds = shading.displacement_fit;
+  CHECK(dd.check_angle_deg.empty());
+  CHECK(dd.shading_levels_dropped == 0);
+  // The angles with no level and each level the distance rule kept.
+  REQUIRE(ds.check_angle_deg.size() == static_cast<std::size_t>(dd.levels) + 1);
+  INFO("levels " << dd.levels << " -> " << ds.levels << "; angles (deg) with 0.." << dd.levels
+                 << " levels: " << ds.check_angle_deg.front() << " .. "
+                 << ds.check_angle_deg.back());
+  CHECK(ds.levels + ds.shading_levels_dropped == dd.levels);
+  // Here every level follows the sphere's real bumps and brings the normals closer (measured:
+  // 15.5 degrees on the domain surface, 1.65 with the 6 levels): none is dropped.
+  CHECK(ds.shading_levels_dropped == 0);
+  // The rule: each dropped level turned the normals further away, the last kept did not.
+  for (int l = ds.levels + 1; l <= dd.levels; ++l) {
+    CHECK(ds.check_angle_deg[static_cast<std::size_t>(l)] >
+          ds.check_angle_deg[static_cast<std::size_t>(l) - 1]);
+  }
+  if (ds.levels > 0) {
+    CHECK(ds.check_angle_deg[static_cast<std::size_t>(ds.levels)] <=
+          ds.check_angle_deg[static_cast<std::size_t>(ds.levels) - 1]);
+  }
+  // The levels bring the normals closer than the domain surface's (the bumps are real).
+  CHECK(ds.check_angle_deg[static_cast<std::size_t>(ds.levels)] < ds.check_angle_deg[0]);
+  // The surface is the distance rule's first levels, and the report counts what is stored.
+  CheckFirstLevels(*distance_fit.displacement, ds.levels, *shading_fit.displacement);
+  CHECK(shading.coefficients == shading_fit.displacement->num_coefficients());
+  CHECK(ds.coefficients == shading.coefficients);
+}
+
+TEST_CASE("fit: check normals of a smoother surface drop the levels that follow the bumps") {
+  // The bumpy sphere's points (its rings 0.5 % off in turn, as above) with check points on it
+  // whose normals are those of the plain sphere (radial): the levels that take in the bumps
+  // turn the surface's normals away from these, and the shading rule drops them. Its own
+  // distances alone (check_distances false) do not decide: the report's check_mean is empty.
+  const RingsOff r;
+  FitInput input = r.Input();
+  const FitOptions options = RingsOff::Options();
+  FittedSurface plain_fit, fit;
+  FitReport plain, report;
+  REQUIRE(FitSurface(input, options, &plain_fit, &plain).ok());
+  for (int i = 0; i < 40; ++i) {
+    for (int j = 1; j < 20; ++j) {
+      const Vec3 p = RingsOff::CheckPoint(i, j);
+      input.check_points.push_back(p);
+      input.check_normals.push_back(glm::normalize(p));
+    }
+  }
+  input.check_distances = false;
+  REQUIRE(FitSurface(input, options, &fit, &report).ok());
+  const AdaptiveDisplacementReport& d = report.displacement_fit;
+  INFO("levels " << plain.displacement_fit.levels << " -> " << d.levels << " (" << d.stopped_by
+                 << "), angles " << d.check_angle_deg.front() << " .. "
+                 << d.check_angle_deg.back());
+  CHECK(d.check_mean.empty());
+  CHECK(d.check_points == static_cast<std::int64_t>(input.check_points.size()));
+  REQUIRE(d.check_angle_deg.size() == static_cast<std::size_t>(plain.displacement_fit.levels) + 1);
+  REQUIRE(d.shading_levels_dropped >= 1);
+  CHECK(d.levels + d.shading_levels_dropped == plain.displacement_fit.levels);
+  CHECK(d.stopped_by == "check normals");
+  for (int l = d.levels + 1; l <= plain.displacement_fit.levels; ++l) {
+    CHECK(d.check_angle_deg[static_cast<std::size_t>(l)] >
+          d.check_angle_deg[static_cast<std::size_t>(l) - 1]);
+  }
+  // The report describes what is stored.
+  const BsplineDisplacement& kept = *fit.displacement;
+  CHECK(kept.max_levels() == d.levels);
+  CHECK(report.max_levels == d.levels);
+  CHECK(d.level_nodes.size() == static_cast<std::size_t>(d.levels));
+  CHECK(report.coefficients == kept.num_coefficients());
+  CHECK(d.coefficients == kept.num_coefficients());  // no seam here
+  REQUIRE(report.level_coefficients.size() == static_cast<std::size_t>(d.levels));
+  std::int64_t sum = 0;
+  for (int k = 0; k < d.levels; ++k) {
+    CHECK(report.level_coefficients[static_cast<std::size_t>(k)] ==
+          plain.level_coefficients[static_cast<std::size_t>(k)]);
+    sum += report.level_coefficients[static_cast<std::size_t>(k)];
+  }
+  CHECK(sum == report.coefficients);
+  CHECK(report.coefficients < plain.coefficients);
+  // The surface is the plain fit's first levels...
+  CheckFirstLevels(*plain_fit.displacement, d.levels, kept);
+  // ... and E1 is measured on it: the fitted points' mean distance at their parameters.
+  double e1 = 0.0, count = 0.0;
+  for (std::size_t i = 0; i < fit.point_fits.size(); ++i) {
+    const PointFit& f = fit.point_fits[i];
+    if (f.status == PointFitStatus::kOutside) continue;
+    SurfacePoint sp;
+    REQUIRE(
+        EvaluateSurface(*fit.surface.domain, fit.surface.patches.data(), &kept, f.face, f.uv, &sp));
+    e1 += glm::length(sp.position - input.points[i]);
+    count += 1.0;
+  }
+  CHECK(e1 / count / report.scale == Approx(report.error.mean).epsilon(1e-9));
+  // Measured: 8 levels -> 3 (angles 12.97 degrees on the domain surface, 4.74 with 3 levels,
+  // 10.19 with 8), 9,366 -> 409 coefficients, E1 5.5e-4 -> 8.7e-3.
+  CHECK(report.error.mean > plain.error.mean);  // the bumps' levels are gone
 }
 
 TEST_CASE("fit: FitPoints without chart samples gives the same parameters") {
@@ -743,6 +888,26 @@ TEST_CASE("fit: bad inputs give clear errors") {
   s = FitSurface(bad_check, options, &fitted, &report);
   CHECK_FALSE(s.ok());
   CHECK(s.message().find("check point 3 is not finite") != std::string::npos);
+  bad_check.check_points[3].z = 0.0;
+  bad_check.check_normals.assign(3, Vec3(0.0, 0.0, 1.0));
+  s = FitSurface(bad_check, options, &fitted, &report);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("3 check normals for 4 check points") != std::string::npos);
+  bad_check.check_normals.assign(4, Vec3(0.0, 0.0, 1.0));
+  bad_check.check_normals[1].x = std::numeric_limits<double>::quiet_NaN();
+  s = FitSurface(bad_check, options, &fitted, &report);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("check normal 1 is not finite") != std::string::npos);
+  bad_check.check_normals[1] = Vec3(0.0, 0.0, 0.1);  // neither unit nor zero
+  s = FitSurface(bad_check, options, &fitted, &report);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("check normal 1 is neither unit nor zero") != std::string::npos);
+  bad_check.check_normals[1] = Vec3(0.0);  // zero: no normal there, taken
+  FitOptions negative = options;
+  negative.displacement.adaptive.check_shading_tolerance = -0.1;
+  s = FitSurface(bad_check, negative, &fitted, &report);
+  CHECK_FALSE(s.ok());
+  CHECK(s.message().find("shading tolerance") != std::string::npos);
 
   FitInput too_many;
   too_many.points = dense.positions;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <glm/trigonometric.hpp>
 #include <limits>
 
 #include "dermis/core/hash.h"
@@ -16,6 +17,7 @@
 #include "dermis/offline/fit/noise_estimate.h"
 #include "dermis/offline/fit/point_fit.h"
 #include "dermis/offline/fit/seam_displacement.h"
+#include "dermis/offline/fit/shading_check.h"
 #include "dermis/offline/fit/surface_projection.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/surface/surface_evaluator.h"
@@ -104,6 +106,29 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
       return Status::InvalidInput(where + ": check point " + std::to_string(i) + " is not finite");
     }
+  }
+  if (!input.check_normals.empty() && input.check_normals.size() != input.check_points.size()) {
+    return Status::InvalidInput(where + ": " + std::to_string(input.check_normals.size()) +
+                                " check normals for " + std::to_string(input.check_points.size()) +
+                                " check points");
+  }
+  for (std::size_t i = 0; i < input.check_normals.size(); ++i) {
+    const Vec3& n = input.check_normals[i];
+    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) {
+      return Status::InvalidInput(where + ": check normal " + std::to_string(i) + " is not finite");
+    }
+    const double l = glm::length(n);
+    if (l != 0.0 && std::abs(l - 1.0) > 1e-3) {
+      return Status::InvalidInput(where + ": check normal " + std::to_string(i) +
+                                  " is neither unit nor zero (length " + std::to_string(l) + ")");
+    }
+  }
+  if (!input.check_normals.empty() &&
+      !(options.displacement.adaptive.check_shading_tolerance >= 0.0 &&
+        std::isfinite(options.displacement.adaptive.check_shading_tolerance))) {
+    return Status::InvalidInput(where +
+                                ": the check points' shading tolerance must be finite and not "
+                                "negative");
   }
   Vec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
   for (std::size_t i = 0; i < input.points.size(); ++i) {
@@ -336,9 +361,11 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     }
     // The check points, projected and optimised as the fitted points (their common
     // displacement is what the levels bring them to).
+    std::vector<PointFit> check_fits;
     if (!input.check_points.empty()) {
-      std::vector<PointFit> check_fits;
       FitPoints(fitted.surface, input.check_points, pf, &check_fits);
+    }
+    if (!input.check_points.empty() && input.check_distances) {
       std::vector<DisplacementTarget> check_targets;
       MakeDisplacementTargets(domain, patches, check_fits, &check_targets);
       for (DisplacementTarget& t : check_targets) {
@@ -357,11 +384,37 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     BsplineDisplacementData data;
     s = FitAdaptiveDisplacement(half, targets, aopt, &data, &rep.displacement_fit);
     if (!s.ok()) return s.WithContext(where);
+    AdaptiveDisplacementReport& d = rep.displacement_fit;
+    if (!input.check_normals.empty()) d.check_points = static_cast<std::int64_t>(check_fits.size());
+    // The fit's levels before the seams change them (the report's count), for the shading rule.
+    const BsplineDisplacementData levels_fitted =
+        input.check_normals.empty() ? BsplineDisplacementData() : data;
     if (!seam.empty()) {
       s = ZeroDisplacementOnSeams(domain, seam, &data);
       if (!s.ok()) return s.WithContext(where);
     }
     fitted.displacement = BsplineDisplacement::Create(std::move(data), domain.num_vertices(), &s);
+    if (!s.ok()) return s.WithContext(where);
+    // The shading rule: the trailing levels that turn the normals away from the source's
+    // shading at the check points are dropped. The levels are additive and the seams' change
+    // is made level by level, so the first levels are exactly the fit with that many.
+    if (!input.check_normals.empty() && fitted.displacement->max_levels() > 0) {
+      const std::vector<double> angles = CheckPointNormalAngles(
+          domain, patches, *fitted.displacement, check_fits, input.check_normals, rep.threads);
+      for (double a : angles) d.check_angle_deg.push_back(glm::degrees(a));
+      const int keep = ShadingCheckLevels(angles, aopt.check_shading_tolerance);
+      if (keep < fitted.displacement->max_levels()) {
+        d.shading_levels_dropped = fitted.displacement->max_levels() - keep;
+        d.levels = keep;
+        d.stopped_by = "check normals";
+        d.level_nodes.resize(std::min(d.level_nodes.size(), static_cast<std::size_t>(keep)));
+        d.coefficients =
+            static_cast<std::int64_t>(TruncateBsplineLevels(levels_fitted, keep).values.size());
+        fitted.displacement = BsplineDisplacement::Create(
+            TruncateBsplineLevels(fitted.displacement->data(), keep), domain.num_vertices(), &s);
+        if (!s.ok()) return s.WithContext(where);
+      }
+    }
   } else {
     fitted.displacement = MakeDisplacement(domain, GatherSamples(fits, true), dopt, &s);
   }

@@ -57,6 +57,14 @@ struct AdaptiveDisplacementOptions {
   /// closer is kept (docs/characters.md, "Levels checked between the samples"). In [0, 1);
   /// ignored without check points.
   double check_improvement = 0.01;
+  /// The check points' shading rule (FitSurface(), with FitInput::check_normals): after the
+  /// rule above, the trailing levels are dropped while the last one left turns the surface's
+  /// normals away from the shading normals at the check points, their mean angle larger than
+  /// the levels before it left it by more than this fraction (docs/characters.md, "Levels
+  /// checked by the shading"). >= 0; ignored without check normals. At 0 a trailing level
+  /// must not turn them away at all: CesiumMan's third level, 0.44 % worse, still left
+  /// visible ridges at the hips.
+  double check_shading_tolerance = 0.0;
   /// Conjugate-gradient steps per level, at most.
   int solver_iterations = 12;
   /// ... or once the residual norm is below this fraction of the right-hand side's.
@@ -80,17 +88,24 @@ struct AdaptiveDisplacementReport {
   std::vector<AdaptiveLevelReport> trial;  ///< The stopping rule's trial levels, in order.
   int levels = 0;                          ///< Levels kept.
   /// What ended the levels: "validation" (the stopping rule), "fitted points" (without a
-  /// validation split: the fitted points' error), "check points" (their rule), "budget" (the
-  /// coefficient budget was spent), "no supported node" (the density and residual criteria left
-  /// none) or "max levels".
+  /// validation split: the fitted points' error), "check points" (their rule), "check normals"
+  /// (the shading rule, FitSurface()), "budget" (the coefficient budget was spent), "no
+  /// supported node" (the density and residual criteria left none) or "max levels".
   std::string stopped_by;
   std::int64_t coefficients = 0;          ///< Stored coefficients of the final fit.
   std::vector<std::int64_t> level_nodes;  ///< Active nodes per kept level (final fit).
-  /// With check points: their count, and their mean |D - p| (model units) with no level and
-  /// after each level the final fit added before the check points' rule (which keeps the
-  /// first `levels`).
+  /// With check points: their count, and (where their distances decide) their mean |D - p|
+  /// (model units) with no level and after each level the final fit added before the check
+  /// points' rule, which keeps the first `levels` (or, after the shading rule, `levels` +
+  /// shading_levels_dropped of them).
   std::int64_t check_points = 0;
   std::vector<double> check_mean;
+  /// With check normals (FitSurface()): the mean angle (degrees) between the surface's normal
+  /// and the shading normal at the check points with no level and with each of the levels the
+  /// rule above kept, and how many of those the shading rule then dropped (`levels` counts
+  /// the levels left).
+  std::vector<double> check_angle_deg;
+  int shading_levels_dropped = 0;
 };
 
 /// Whether target i belongs to the validation split (a fixed hash of i and the seed).

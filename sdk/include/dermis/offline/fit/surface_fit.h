@@ -119,11 +119,21 @@ struct FitInput {
   /// stages and the errors reported do not use it.
   std::vector<double> weights;
   /// Check points (model units): points on the data's surface between `points`, projected and
-  /// optimised as they are but never fitted; the adaptive displacement fit drops the levels
-  /// after the last one that brought them closer (AdaptiveDisplacementOptions::
-  /// check_improvement). A character's low-poly part gets them between its samples
-  /// (CharacterFitOptions::check_points). Other displacement methods ignore them.
+  /// optimised as they are but never fitted; with check_distances the adaptive displacement
+  /// fit drops the levels after the last one that brought them closer
+  /// (AdaptiveDisplacementOptions::check_improvement). A character's low-poly part gets them
+  /// between its samples, a denser part with shading normals for the shading rule alone
+  /// (CharacterFitOptions::check_points, check_shading). Other displacement methods ignore them.
   std::vector<Vec3> check_points;
+  /// Per check point (same order), the source's shading normal there (unit, or a zero vector:
+  /// none; another length is refused), or empty. With them the adaptive displacement fit then
+  /// drops the trailing levels that turn the surface's normals away from these
+  /// (AdaptiveDisplacementOptions::check_shading_tolerance; docs/characters.md, "Levels checked
+  /// by the shading").
+  std::vector<Vec3> check_normals;
+  /// Whether the check points' distances decide levels (the rule above); false: only their
+  /// normals do (a denser character part, whose distance rule kept every level).
+  bool check_distances = true;
 };
 
 /// Distances in the paper's unit: the data scaled so that its bounding box's largest side is 1.
