@@ -34,6 +34,7 @@
 //                             [--shading-max-move M] (its largest move, of the diagonal)
 //                             [--vertex-weight W] (characters' vertices against one sample)
 //                             [--creases-ignore-shading] (smooth-shaded sharp edges are creases)
+//                             [--no-check-shading] (the check points' distance rule alone)
 //                             [--input-quads R] (characters: the input's own quads; 0: off)
 //                             [--crease-support K] (support rows beside closed crease loops; 1:
 //                             off) [--creases-closed] (no cut along hard creases)
@@ -63,6 +64,7 @@
 #include "dermis/offline/fit/surface_fit.h"
 #include "dermis/offline/fit/surface_projection.h"
 #include "dermis/offline/geometry/builtin_meshes.h"
+#include "dermis/offline/geometry/mesh_metrics.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/offline/io/point_input.h"
 #include "dermis/plugins/gltf.h"
@@ -199,6 +201,7 @@ struct Settings {
   bool where = false;             ///< --where: the largest character distances and what is there.
   bool no_crease_remesh = false;  ///< --no-crease-remesh: the remesh ignores creases.
   bool creases_ignore_shading = false;  ///< --creases-ignore-shading: smooth-shaded creases too.
+  bool no_check_shading = false;        ///< --no-check-shading: the check points' distances only.
   double crease_support = -1.0;         ///< --crease-support K; -1: CharacterFitOptions' default
   bool creases_closed = false;          ///< --creases-closed: no cut along hard creases
   double input_quads = -1.0;            ///< --input-quads R; -1: CharacterFitOptions' default
@@ -597,44 +600,6 @@ struct Triangles {
   }
 };
 
-// The integral of |mean curvature| over a triangle mesh, (1/2) sum over its edges of |dihedral
-// angle| x length (Cohen-Steiner and Morvan 2003), with vertices welded where they lie within
-// `weld` of each other on a grid of that size (split seams join). Ripples and lumps add to it
-// however small they are; a surface that follows its source's shape adds about the source's.
-double AbsMeanCurvatureIntegral(const Triangles& m, double weld) {
-  std::map<std::array<long long, 3>, std::uint32_t> id;
-  std::vector<std::uint32_t> w(m.positions.size());
-  for (std::size_t i = 0; i < m.positions.size(); ++i) {
-    const Vec3& p = m.positions[i];
-    const std::array<long long, 3> key = {std::llround(p.x / weld), std::llround(p.y / weld),
-                                          std::llround(p.z / weld)};
-    w[i] = id.emplace(key, static_cast<std::uint32_t>(id.size())).first->second;
-  }
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
-  std::vector<Vec3> normal(m.indices.size() / 3);
-  for (std::size_t t = 0; t < normal.size(); ++t) {
-    const Vec3 &a = m.positions[m.indices[3 * t]], &b = m.positions[m.indices[3 * t + 1]],
-               &c = m.positions[m.indices[3 * t + 2]];
-    const Vec3 n = glm::cross(b - a, c - a);
-    const double l = glm::length(n);
-    normal[t] = l > 0.0 ? n / l : Vec3(0.0);
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t x = w[m.indices[3 * t + static_cast<std::size_t>(k)]];
-      const std::uint32_t y = w[m.indices[3 * t + static_cast<std::size_t>((k + 1) % 3)]];
-      if (x != y) edges[{std::min(x, y), std::max(x, y)}].push_back(t);
-    }
-  }
-  std::vector<Vec3> welded(id.size());
-  for (std::size_t i = 0; i < m.positions.size(); ++i) welded[w[i]] = m.positions[i];
-  double sum = 0.0;
-  for (const auto& e : edges) {
-    if (e.second.size() != 2) continue;
-    const double c = std::clamp(glm::dot(normal[e.second[0]], normal[e.second[1]]), -1.0, 1.0);
-    sum += 0.5 * std::acos(c) * glm::length(welded[e.first.second] - welded[e.first.first]);
-  }
-  return sum;
-}
-
 // How far the lod surface's normals turn from the source's shading normals (its NORMAL
 // attribute, interpolated across the closest source triangle): the mean and the 95th
 // percentile over the lod surface's area, degrees (each lod vertex stands for a third of its
@@ -809,6 +774,7 @@ int RunCharacters(const Settings& st) {
     if (st.max_turn >= 0.0) options.max_turn = st.max_turn;
     if (st.no_crease_remesh) options.remesh_creases = false;
     if (st.creases_ignore_shading) options.creases_follow_shading = false;
+    if (st.no_check_shading) options.check_shading = false;
     if (st.crease_support >= 0.0) options.crease_support = st.crease_support;
     if (st.creases_closed) options.cut_creases = false;
     if (st.input_quads >= 0.0) options.input_quads = st.input_quads;
@@ -897,8 +863,10 @@ int RunCharacters(const Settings& st) {
     }
     double shade_mean = -1.0, shade_p95 = -1.0;
     ShadingDeviation(lod, source, source_tree, diagonal / 100.0, &shade_mean, &shade_p95);
-    const double curvature_ratio = AbsMeanCurvatureIntegral(lod, 1e-7 * diagonal) /
-                                   AbsMeanCurvatureIntegral(source, 1e-7 * diagonal);
+    // The integral of |mean curvature| (AbsMeanCurvatureIntegral): ripples and lumps add to it.
+    const double curvature_ratio =
+        AbsMeanCurvatureIntegral(lod.positions, lod.indices, 1e-7 * diagonal) /
+        AbsMeanCurvatureIntegral(source.positions, source.indices, 1e-7 * diagonal);
     std::printf(
         "| %s | %lld | %lld | %.2f | %.2f | %.2f | %.3g | %.1f / %.1f | %.2f | %lld | %.2f |\n",
         name, static_cast<long long>(points), static_cast<long long>(control_vertices),
@@ -912,7 +880,8 @@ int RunCharacters(const Settings& st) {
           "control crease edges; support rows: %d loops, %d vertices moved; cut open: %d edges, "
           "%d vertices added; control-vertex fit: %d rounds; shading shape %.2f (normals %.2f deg "
           "from the shading normals, the flat triangles %.2f); creases from %.1f deg; surface "
-          "gaps: %d source points added; check points: %d, %d levels dropped%s%s%s\n",
+          "gaps: %d source points added; check points: %d, levels dropped: %d by their distances, "
+          "%d by their shading%s%s%s\n",
           name, p, c.method.c_str(), c.quality.vertices, c.quality.target_vertices,
           100.0 * c.quality.valence4_share, c.quality.min_corner_angle_deg,
           c.quality.max_corner_angle_deg, c.quality.crease_edges_kept, c.quality.crease_edges,
@@ -920,7 +889,8 @@ int RunCharacters(const Settings& st) {
           c.crease_support_loops, c.crease_support_vertices, c.crease_cut_edges,
           c.crease_cut_vertices, c.control_fit_rounds, c.shading_shape, c.shading_deviation_deg,
           c.flat_deviation_deg, c.crease_angle_deg, c.surface_gap_points, c.check_points,
-          c.check_levels_dropped, c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str(),
+          c.check_levels_dropped, c.shading_levels_dropped,
+          c.fallback.empty() ? "" : "; fallback: ", c.fallback.c_str(),
           c.quality.input_quads ? ("; the input's own quads (the remesh had " +
                                    std::to_string(c.quality.remesh_vertices) + " vertices)")
                                       .c_str()
@@ -1013,6 +983,8 @@ int main(int argc, char** argv) {
       st.creases_closed = true;
     } else if (std::strcmp(argv[i], "--crease-support") == 0 && i + 1 < argc) {
       st.crease_support = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--no-check-shading") == 0) {
+      st.no_check_shading = true;
     } else if (std::strcmp(argv[i], "--creases-ignore-shading") == 0) {
       st.creases_ignore_shading = true;
     } else if (std::strcmp(argv[i], "--compare-simplified") == 0 && i + 1 < argc) {

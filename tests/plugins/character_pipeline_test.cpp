@@ -18,10 +18,13 @@
 #include <tuple>
 #include <vector>
 
+#include "dermis/asset/asset_pose.h"
 #include "dermis/asset/asset_validate.h"
 #include "dermis/offline/character/character_export.h"
 #include "dermis/offline/character/character_fit.h"
 #include "dermis/offline/character/character_pose.h"
+#include "dermis/offline/character/skin_transfer.h"
+#include "dermis/offline/geometry/mesh_metrics.h"
 #include "dermis/plugins/gltf.h"
 #include "dermis/runtime/character.h"
 #include "support/assimp_counts.h"
@@ -253,11 +256,12 @@ TEST_CASE("pipeline: RiggedSimple's cap rims get support rows and the surface fo
   INFO("Hausdorff (of the part's scale): with support rows " << ha << ", without " << hb);
   CHECK(ha < 0.75 * hb);
   // The bound export's error stays small against the part (E1 max, model units; diagonal 9.6):
-  // measured 0.0022 (0.0003 when the tube's sliver triangles had seven times as many samples,
-  // before 2026-12-05: the budget of 3 coefficients per fitted point then allowed 8 levels
-  // where it now allows 5; `dermis fit --creases-closed --coefficients-per-point 6` gives
-  // 0.00033 again with 12,948 coefficients).
-  CHECK(ra.e1_max < 4e-4 * Diagonal(asset));
+  // measured 0.0044 since the check points' shading rule drops the finest level, which turned
+  // the normals away from the source's shading (docs/characters.md, "Levels checked by the
+  // shading"; 0.0022 with every level, `--no-check-shading`; 0.0003 when the tube's sliver
+  // triangles had seven times as many samples, before 2026-12-05: the budget of 3 coefficients
+  // per fitted point then allowed 8 levels where it now allows 5).
+  CHECK(ra.e1_max < 6e-4 * Diagonal(asset));
 }
 
 TEST_CASE("pipeline: RiggedFigure's hard edges cut open stay sharp and closed through its clip",
@@ -536,6 +540,75 @@ TEST_CASE("pipeline: no data point is fitted to a distant root beside the Fox's 
   CHECK(t.ra.e1_max < 0.05);
 }
 
+/// The integral of |mean curvature| over the lod surface at rest (level 8), its primitives'
+/// split seams welded within 1e-7 of the diagonal (AbsMeanCurvatureIntegral): ripples and
+/// lumps add to it however small they are (bench_fit's curvature ratio is this over the
+/// source's). Measured on the tessellation, which the check points never see.
+double LodCurvatureIntegral(const Character& ch, double diagonal) {
+  CharacterPoseOptions po;
+  po.mode = CharacterPoseMode::kLod;
+  po.level = 8;
+  CharacterPoser poser;
+  std::vector<PosedPrimitive> posed;
+  REQUIRE(CharacterPoser::Build(ch, po, &poser).ok());
+  REQUIRE(poser.PoseClip(-1, 0.0, kDefaultPoseStepsPerSecond, &posed).ok());
+  std::vector<Vec3> positions;
+  std::vector<std::uint32_t> triangles;
+  for (std::size_t k = 0; k < posed.size(); ++k) {
+    const DrawnPrimitive& d = poser.drawn()[k];
+    const AssetPrimitive& prim = poser.asset()
+                                     .meshes[static_cast<std::size_t>(d.mesh)]
+                                     .primitives[static_cast<std::size_t>(d.primitive)];
+    const auto base = static_cast<std::uint32_t>(positions.size());
+    positions.insert(positions.end(), posed[k].positions.begin(), posed[k].positions.end());
+    for (std::uint32_t i : PrimitiveTriangles(prim)) triangles.push_back(base + i);
+  }
+  return AbsMeanCurvatureIntegral(positions, triangles, 1e-7 * diagonal);
+}
+
+TEST_CASE("pipeline: CesiumMan's finest levels that ripple its hips are dropped by the shading",
+          "[data][heavy]") {
+  // The Khronos asset itself (docs/characters.md, "Levels checked by the shading"): its finest
+  // displacement levels pinned the surface to each ring of vertices round the hips and left
+  // ridges between them, which every distance measured passed (they improve the check points'
+  // mean distance at every level). The check points' shading normals see them: a level that
+  // turns the surface's normals away from the source's shading there is dropped.
+  TwoFits t;
+  if (!FitTwice(
+          "CesiumMan.glb", [](CharacterFitOptions* o) { o->check_shading = false; }, &t)) {
+    return;
+  }
+  const ControlMeshInfo &ca = t.ra.part_control_meshes[0], &cb = t.rb.part_control_meshes[0];
+  // A part denser than the low-poly rule gets check points for the shading rule alone.
+  CHECK(ca.check_points > 1000);
+  CHECK(cb.check_points == 0);
+  CHECK(cb.check_angle_deg.empty());
+  REQUIRE(ca.shading_levels_dropped >= 1);
+  // Its angles: with no level, and with each level the distance rule kept.
+  const int kept = static_cast<int>(ca.check_angle_deg.size()) - 1 - ca.shading_levels_dropped;
+  REQUIRE(kept >= 1);
+  const auto& angle = ca.check_angle_deg;
+  CHECK(angle[static_cast<std::size_t>(kept)] < angle[0]);  // the levels kept help the shading
+  for (std::size_t l = static_cast<std::size_t>(kept) + 1; l < angle.size(); ++l) {
+    CHECK(angle[l] > angle[l - 1]);  // each dropped level turned the normals away
+  }
+  const PartFitSummary &fa = t.a.parts[0].fit, &fb = t.b.parts[0].fit;
+  // Measured independently on the lod tessellation (not at the check points): the integral of
+  // its |mean curvature| falls as the ridges go; the surface stays as close (Hausdorff
+  // 0.35 % against 0.27 % of the diagonal, issue 15's goal 0.75 %) with a third of the
+  // coefficients.
+  const double na = LodCurvatureIntegral(t.a, Diagonal(t.asset)),
+               nb = LodCurvatureIntegral(t.b, Diagonal(t.asset));
+  INFO("angles at the check points "
+       << angle[static_cast<std::size_t>(kept)] << " kept, " << angle.back()
+       << " with every level; lod |H| integral " << na << " against " << nb << "; coefficients "
+       << fa.coefficients << " against " << fb.coefficients << "; Hausdorff " << fa.hausdorff
+       << " against " << fb.hausdorff);
+  CHECK(na < 0.95 * nb);
+  CHECK(2 * fa.coefficients < fb.coefficients);
+  CHECK(fa.hausdorff < 1.5 * fb.hausdorff);
+}
+
 TEST_CASE("pipeline: CesiumMan, modelled in quads, gets its own quads as its control mesh",
           "[data][heavy]") {
   // The Khronos asset itself (docs/characters.md, "The input's own quads"): its triangles pair
@@ -584,14 +657,16 @@ TEST_CASE("pipeline: CesiumMan, modelled in quads, gets its own quads as its con
   CHECK(kept == source.size());
   CHECK(cv.size() > source.size());
   CHECK(static_cast<double>(cv.size()) <= 1.5 * static_cast<double>(qb.vertices));
-  // Closer to the source both ways, and the bound export's largest error a tenth of the
-  // remesh's (measured: Hausdorff 0.29 % against 0.33 %, E1 max 5.9e-5 against 1.5e-3 model
-  // units; bench_fit --rows characters).
+  // Closer to the source both ways, and the bound export's largest error a third of the
+  // remesh's (measured: Hausdorff 0.0041 against 0.0044 of the part's scale, E1 max 9.7e-4
+  // against 2.8e-3 model units; before the check points' shading rule dropped CesiumMan's
+  // finest levels, which pinned the surface to each ring of vertices and rippled it between
+  // them, 0.29 % against 0.33 % of the diagonal and 5.9e-5 against 1.5e-3).
   const double ha = a.parts[0].fit.hausdorff, hb = b.parts[0].fit.hausdorff;
   INFO("Hausdorff (of the part's scale): own quads " << ha << ", remesh " << hb << "; E1 max "
                                                      << ra.e1_max << " against " << rb.e1_max);
   CHECK(ha < hb);
-  CHECK(ra.e1_max < 0.1 * rb.e1_max);
+  CHECK(ra.e1_max < 0.5 * rb.e1_max);
 }
 
 }  // namespace

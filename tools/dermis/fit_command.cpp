@@ -66,6 +66,7 @@ struct FitArgs {
   double input_quads = CharacterFitOptions{}.input_quads;
   double surface_gap = CharacterFitOptions{}.surface_gap;
   double check_points = CharacterFitOptions{}.check_points;
+  bool no_check_shading = false;
   double low_poly_crease_angle = CharacterFitOptions{}.low_poly_crease_angle;
   bool refit = false;
   // Options given on the command line that only one kind of input takes (set at parse time):
@@ -128,10 +129,14 @@ nlohmann::ordered_json ControlMeshJson(const ControlMeshInfo& c) {
   }
   // Characters (CharacterFitOptions::surface_gap), whichever method made the control mesh.
   if (c.surface_gap_points > 0) m["surface_gap_points"] = c.surface_gap_points;
-  // Characters' low-poly parts (CharacterFitOptions::check_points).
+  // Characters' check points (CharacterFitOptions::check_points, check_shading).
   if (c.check_points > 0) {
     m["check_points"] = c.check_points;
     m["check_levels_dropped"] = c.check_levels_dropped;
+    if (!c.check_angle_deg.empty()) {
+      m["check_angle_deg"] = c.check_angle_deg;
+      m["shading_levels_dropped"] = c.shading_levels_dropped;
+    }
   }
   return m;
 }
@@ -280,6 +285,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   options_json["input-quads"] = options.input_quads;
   options_json["surface-gap"] = options.surface_gap;
   options_json["check-points"] = options.check_points;
+  options_json["no-check-shading"] = !options.check_shading;
   options_json["refit"] = a.refit;
   Json j;
   StartReport(&j, "dermis.fit-character/1", std::move(options_json));
@@ -355,6 +361,7 @@ int RunFitCharacter(const FitArgs& a) {
   options.input_quads = a.input_quads;
   options.surface_gap = a.surface_gap;
   options.check_points = a.check_points;
+  options.check_shading = !a.no_check_shading;
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit_clean_iterations = a.clean_rounds;
@@ -734,6 +741,11 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                   "docs/characters.md, \"Levels checked between the samples\")")
       ->check(CLI::Range(0.0, 64.0))
       ->capture_default_str();
+  cmd->add_flag("--no-check-shading", args->no_check_shading,
+                "Characters: the check points do not carry the source's shading normals (by "
+                "default, where a part has them, the trailing displacement levels that turn the "
+                "surface's normals away from them are dropped, and a denser part gets check "
+                "points for that alone; docs/characters.md, \"Levels checked by the shading\")");
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
@@ -762,6 +774,7 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
           args->character_only.push_back("--creases-ignore-shading");
         }
         if (args->creases_closed) args->character_only.push_back("--creases-closed");
+        if (args->no_check_shading) args->character_only.push_back("--no-check-shading");
         for (const char* name : {"--control-vertices", "--control-fit", "--patch-agreement",
                                  "--noisy-ratio", "--clean-rounds"}) {
           if (cmd->count(name) > 0) args->automatic_only.push_back(name);

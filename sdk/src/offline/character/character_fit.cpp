@@ -472,15 +472,23 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
         dense, shading, smooth_edges, edge / options.samples_per_control_edge, options.crease_angle,
         options.crease_samples, options.crease_rows, turn);
     input.points.insert(input.points.end(), extra.begin(), extra.end());
-    // Check points between the samples (CharacterFitOptions::check_points), on a low-poly
-    // part only: on a denser one the levels follow its vertices, and the check points confirm
-    // every level (CesiumMan and the demo creature: the same levels, 1.5 s more on the
-    // creature).
-    if (options.check_points > 0.0 && low_poly) {
+    // Check points between the samples (CharacterFitOptions::check_points), with the source's
+    // shading normals there (CharacterFitOptions::check_shading). On a low-poly part always.
+    // On a denser one the levels follow its vertices and the distance rule confirms every
+    // level (CesiumMan and the demo creature: the same levels, 1.5 s more on the creature), so
+    // there they serve the shading rule alone: only where the part has shading normals
+    // (CesiumMan's hips: the finest levels pinned the surface to each ring of vertices and
+    // left ridges between them; docs/characters.md, "Levels checked by the shading").
+    if (options.check_points > 0.0 && (low_poly || options.check_shading)) {
       // At most as many as the points fitted: the rule compares means.
       input.check_points = character::CheckPoints(
           dense, shading, edge / options.samples_per_control_edge, options.check_points,
-          kCheckPointSeed, static_cast<double>(input.points.size()));
+          kCheckPointSeed, static_cast<double>(input.points.size()), &input.check_normals);
+      bool normals = false;
+      for (const Vec3& n : input.check_normals) normals = normals || glm::dot(n, n) > 0.0;
+      if (!normals || !options.check_shading) input.check_normals.clear();
+      if (!low_poly && input.check_normals.empty()) input.check_points.clear();
+      input.check_distances = low_poly;
     }
   }
   input.mesh = &dense;
@@ -634,7 +642,11 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
     const AdaptiveDisplacementReport& d = fr->displacement_fit;
     fr->control_mesh.check_points = static_cast<int>(d.check_points);
     fr->control_mesh.check_levels_dropped =
-        d.check_mean.empty() ? 0 : static_cast<int>(d.check_mean.size()) - 1 - d.levels;
+        d.check_mean.empty()
+            ? 0
+            : static_cast<int>(d.check_mean.size()) - 1 - d.levels - d.shading_levels_dropped;
+    fr->control_mesh.shading_levels_dropped = d.shading_levels_dropped;
+    fr->control_mesh.check_angle_deg = d.check_angle_deg;
   }
   fr->control_mesh.shading_shape = shape;
   fr->control_mesh.shading_deviation_deg = glm::degrees(deviation);

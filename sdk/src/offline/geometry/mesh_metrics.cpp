@@ -2,7 +2,10 @@
 #include "dermis/offline/geometry/mesh_metrics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <utility>
 
 namespace dermis {
 
@@ -57,6 +60,44 @@ TriangleMeshMetrics ComputeTriangleMeshMetrics(const std::vector<Vec3>& position
     i = j;
   }
   return m;
+}
+
+double AbsMeanCurvatureIntegral(const std::vector<Vec3>& positions,
+                                const std::vector<std::uint32_t>& triangles, double weld) {
+  std::map<std::array<long long, 3>, std::uint32_t> id;
+  std::vector<std::uint32_t> w(positions.size());
+  std::vector<Vec3> welded;
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const Vec3& p = positions[i];
+    const std::array<long long, 3> key = {std::llround(p.x / weld), std::llround(p.y / weld),
+                                          std::llround(p.z / weld)};
+    const auto it = id.emplace(key, static_cast<std::uint32_t>(welded.size()));
+    if (it.second) welded.push_back(p);
+    w[i] = it.first->second;
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  std::vector<Vec3> normal(triangles.size() / 3);
+  for (std::size_t t = 0; t < normal.size(); ++t) {
+    const Vec3 &a = positions[triangles[3 * t]], &b = positions[triangles[3 * t + 1]],
+               &c = positions[triangles[3 * t + 2]];
+    const Vec3 n = glm::cross(b - a, c - a);
+    const double l = glm::length(n);
+    normal[t] = l > 0.0 ? n / l : Vec3(0.0);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t x = w[triangles[3 * t + k]], y = w[triangles[3 * t + (k + 1) % 3]];
+      if (x != y) edges[{std::min(x, y), std::max(x, y)}].push_back(t);
+    }
+  }
+  double sum = 0.0;
+  for (const auto& e : edges) {
+    if (e.second.size() != 2) continue;
+    const Vec3 &n0 = normal[e.second[0]], &n1 = normal[e.second[1]];
+    if (glm::dot(n0, n0) == 0.0 || glm::dot(n1, n1) == 0.0) continue;
+    // atan2 of sine and cosine: exact to rounding near 0, where acos(cos) is not (1e-8).
+    const double angle = std::atan2(glm::length(glm::cross(n0, n1)), glm::dot(n0, n1));
+    sum += 0.5 * angle * glm::length(welded[e.first.second] - welded[e.first.first]);
+  }
+  return sum;
 }
 
 }  // namespace dermis

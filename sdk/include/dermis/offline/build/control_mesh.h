@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "dermis/core/status.h"
 #include "dermis/offline/build/quad_remesh.h"
@@ -80,6 +81,12 @@ struct ControlMeshInfo {
   /// none), and the displacement levels their rule dropped.
   int check_points = 0;
   int check_levels_dropped = 0;
+  /// Characters: the displacement levels the check points' shading rule dropped after that
+  /// (CharacterFitOptions::check_shading), and the mean angle (degrees) between the surface's
+  /// normals and the source's shading normals at the check points with 0, 1, ... of the levels
+  /// the distance rule kept (empty: not measured; AdaptiveDisplacementReport::check_angle_deg).
+  int shading_levels_dropped = 0;
+  std::vector<double> check_angle_deg;
 };
 
 /// Builds a control mesh from a polygon mesh (faces are fan-triangulated): welds vertices

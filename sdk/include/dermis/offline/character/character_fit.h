@@ -140,7 +140,9 @@ struct CharacterFitOptions {
   /// fit.displacement's: its displacement carries the creases.
   double crease_smoothing = 1e-2;
   /// Check points on a low-poly part (its control mesh at its own resolution or finer, the
-  /// test max_turn's closer samples use): this many per area of the samples' spacing squared,
+  /// test max_turn's closer samples use), and with check_shading on a denser part that has
+  /// shading normals (for the shading rule alone): this many per area of the samples' spacing
+  /// squared,
   /// spread at random but reproducible places over its triangles on the shading surface, never
   /// fitted (FitInput::check_points). The displacement fit drops the levels after the last one
   /// that brought them 1 % closer, where the levels kept bring them closer than the domain
@@ -151,6 +153,12 @@ struct CharacterFitOptions {
   /// compares means, and more would only cost time. In [0, 64]; 0: none, every level the
   /// fitted points' rule keeps.
   double check_points = 1.0;
+  /// Where the part has shading normals, the check points carry them too
+  /// (FitInput::check_normals): after their distance rule the displacement fit drops the
+  /// trailing levels that turn the surface's normals away from the source's shading there
+  /// (AdaptiveDisplacementOptions::check_shading_tolerance; docs/characters.md, "Levels
+  /// checked by the shading"). false: the distance rule alone.
+  bool check_shading = true;
   /// In the same fits (a control mesh that keeps creases, or a part whose sharp edges are all
   /// shaded smooth) and when there are samples between the vertices, the weight of each source
   /// vertex against one sample in the displacement levels' least squares (FitInput::weights):

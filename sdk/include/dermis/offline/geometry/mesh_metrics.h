@@ -1,6 +1,7 @@
 // Copyright (c) Dermis authors. SPDX-License-Identifier: MIT
 /// \file
-/// \brief Quality measures of a triangle mesh: watertightness and the largest dihedral angle.
+/// \brief Quality measures of a triangle mesh: watertightness, the largest dihedral angle and
+/// the integral of |mean curvature|.
 #pragma once
 
 #include <cstdint>
@@ -32,5 +33,15 @@ struct TriangleMeshMetrics {
 /// Computes the metrics of `triangles` (3 indices per triangle) over `positions`.
 TriangleMeshMetrics ComputeTriangleMeshMetrics(const std::vector<Vec3>& positions,
                                                const std::vector<std::uint32_t>& triangles);
+
+/// The integral of |mean curvature| over an indexed triangle mesh (3 indices per triangle
+/// into `positions`, model units): (1/2) the sum over its edges shared by exactly two
+/// triangles of |dihedral angle| x length (Cohen-Steiner and Morvan 2003). Vertices that round
+/// to the same point of a grid of spacing `weld` (> 0) are one, so split seams join. Ripples
+/// and lumps add to it however small they are: a surface that follows its source's shape
+/// gives about the source's (bench_fit's curvature ratio). Degenerate triangles count as
+/// flat. Deterministic.
+double AbsMeanCurvatureIntegral(const std::vector<Vec3>& positions,
+                                const std::vector<std::uint32_t>& triangles, double weld);
 
 }  // namespace dermis
