@@ -406,10 +406,11 @@ TEST_CASE(
   CHECK(mean < 0.02);
 }
 
-/// The integral of |mean curvature| over the rest pose's level-8 lod surface of a one-mesh,
-/// one-primitive character: (1/2) sum over its edges of |dihedral| x length (Cohen-Steiner and
-/// Morvan 2003), the lod's seam vertices welded on a grid of 1e-7 of `diagonal`. Every ripple
-/// or lump adds to it.
+/// The integral of |mean curvature| over the rest pose's level-8 lod surface
+/// (AbsMeanCurvatureIntegral: (1/2) sum over its edges of |dihedral| x length, Cohen-Steiner
+/// and Morvan 2003; bench_fit's curvature ratio is this over the source's), its primitives'
+/// seam vertices welded on a grid of 1e-7 of `diagonal`. Every ripple or lump adds to it,
+/// though the check points never see the tessellation.
 double LodAbsMeanCurvature(const Character& ch, double diagonal) {
   CharacterPoseOptions po;
   po.mode = CharacterPoseMode::kLod;
@@ -418,39 +419,18 @@ double LodAbsMeanCurvature(const Character& ch, double diagonal) {
   REQUIRE(CharacterPoser::Build(ch, po, &poser).ok());
   std::vector<PosedPrimitive> rest;
   REQUIRE(poser.PoseClip(-1, 0.0, kDefaultPoseStepsPerSecond, &rest).ok());
-  REQUIRE(rest.size() == 1);
-  REQUIRE(poser.asset().meshes.size() == 1);
-  const std::vector<std::uint32_t>& tris = poser.asset().meshes[0].primitives[0].indices;
-  const std::vector<Vec3>& x = rest[0].positions;
-  const double weld = 1e-7 * diagonal;
-  std::map<std::array<long long, 3>, std::uint32_t> id;
-  std::vector<std::uint32_t> w(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const std::array<long long, 3> key = {std::llround(x[i].x / weld), std::llround(x[i].y / weld),
-                                          std::llround(x[i].z / weld)};
-    w[i] = id.emplace(key, static_cast<std::uint32_t>(id.size())).first->second;
+  std::vector<Vec3> positions;
+  std::vector<std::uint32_t> triangles;
+  for (std::size_t k = 0; k < rest.size(); ++k) {
+    const DrawnPrimitive& d = poser.drawn()[k];
+    const AssetPrimitive& prim = poser.asset()
+                                     .meshes[static_cast<std::size_t>(d.mesh)]
+                                     .primitives[static_cast<std::size_t>(d.primitive)];
+    const auto base = static_cast<std::uint32_t>(positions.size());
+    positions.insert(positions.end(), rest[k].positions.begin(), rest[k].positions.end());
+    for (std::uint32_t i : PrimitiveTriangles(prim)) triangles.push_back(base + i);
   }
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<Vec3>> edges;  // face normals
-  std::map<std::pair<std::uint32_t, std::uint32_t>, double> length;
-  for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
-    const Vec3 &a = x[tris[t]], &b = x[tris[t + 1]], &c = x[tris[t + 2]];
-    const Vec3 n = glm::cross(b - a, c - a);
-    if (!(glm::length(n) > 0.0)) continue;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::uint32_t i = tris[t + k], j = tris[t + (k + 1) % 3];
-      if (w[i] == w[j]) continue;
-      const auto e = std::make_pair(std::min(w[i], w[j]), std::max(w[i], w[j]));
-      edges[e].push_back(glm::normalize(n));
-      length[e] = glm::length(x[j] - x[i]);
-    }
-  }
-  double sum = 0.0;
-  for (const auto& e : edges) {
-    if (e.second.size() != 2) continue;
-    const double c = std::max(-1.0, std::min(1.0, glm::dot(e.second[0], e.second[1])));
-    sum += 0.5 * std::acos(c) * length[e.first];
-  }
-  return sum;
+  return AbsMeanCurvatureIntegral(positions, triangles, 1e-7 * diagonal);
 }
 
 TEST_CASE("pipeline: RiggedFigure's box limbs shaded smooth stay flat instead of bumped",
@@ -540,32 +520,6 @@ TEST_CASE("pipeline: no data point is fitted to a distant root beside the Fox's 
   CHECK(t.ra.e1_max < 0.05);
 }
 
-/// The integral of |mean curvature| over the lod surface at rest (level 8), its primitives'
-/// split seams welded within 1e-7 of the diagonal (AbsMeanCurvatureIntegral): ripples and
-/// lumps add to it however small they are (bench_fit's curvature ratio is this over the
-/// source's). Measured on the tessellation, which the check points never see.
-double LodCurvatureIntegral(const Character& ch, double diagonal) {
-  CharacterPoseOptions po;
-  po.mode = CharacterPoseMode::kLod;
-  po.level = 8;
-  CharacterPoser poser;
-  std::vector<PosedPrimitive> posed;
-  REQUIRE(CharacterPoser::Build(ch, po, &poser).ok());
-  REQUIRE(poser.PoseClip(-1, 0.0, kDefaultPoseStepsPerSecond, &posed).ok());
-  std::vector<Vec3> positions;
-  std::vector<std::uint32_t> triangles;
-  for (std::size_t k = 0; k < posed.size(); ++k) {
-    const DrawnPrimitive& d = poser.drawn()[k];
-    const AssetPrimitive& prim = poser.asset()
-                                     .meshes[static_cast<std::size_t>(d.mesh)]
-                                     .primitives[static_cast<std::size_t>(d.primitive)];
-    const auto base = static_cast<std::uint32_t>(positions.size());
-    positions.insert(positions.end(), posed[k].positions.begin(), posed[k].positions.end());
-    for (std::uint32_t i : PrimitiveTriangles(prim)) triangles.push_back(base + i);
-  }
-  return AbsMeanCurvatureIntegral(positions, triangles, 1e-7 * diagonal);
-}
-
 TEST_CASE("pipeline: CesiumMan's finest levels that ripple its hips are dropped by the shading",
           "[data][heavy]") {
   // The Khronos asset itself (docs/characters.md, "Levels checked by the shading"): its finest
@@ -597,8 +551,8 @@ TEST_CASE("pipeline: CesiumMan's finest levels that ripple its hips are dropped 
   // its |mean curvature| falls as the ridges go; the surface stays as close (Hausdorff
   // 0.35 % against 0.27 % of the diagonal, issue 15's goal 0.75 %) with a third of the
   // coefficients.
-  const double na = LodCurvatureIntegral(t.a, Diagonal(t.asset)),
-               nb = LodCurvatureIntegral(t.b, Diagonal(t.asset));
+  const double na = LodAbsMeanCurvature(t.a, Diagonal(t.asset)),
+               nb = LodAbsMeanCurvature(t.b, Diagonal(t.asset));
   INFO("angles at the check points "
        << angle[static_cast<std::size_t>(kept)] << " kept, " << angle.back()
        << " with every level; lod |H| integral " << na << " against " << nb << "; coefficients "

@@ -483,10 +483,11 @@ std::string FitComponent(const PolygonMesh& dense, const std::vector<Vec3>& corn
       // At most as many as the points fitted: the rule compares means.
       input.check_points = character::CheckPoints(
           dense, shading, edge / options.samples_per_control_edge, options.check_points,
-          kCheckPointSeed, static_cast<double>(input.points.size()), &input.check_normals);
+          kCheckPointSeed, static_cast<double>(input.points.size()),
+          options.check_shading ? &input.check_normals : nullptr);
       bool normals = false;
       for (const Vec3& n : input.check_normals) normals = normals || glm::dot(n, n) > 0.0;
-      if (!normals || !options.check_shading) input.check_normals.clear();
+      if (!normals) input.check_normals.clear();
       if (!low_poly && input.check_normals.empty()) input.check_points.clear();
       input.check_distances = low_poly;
     }

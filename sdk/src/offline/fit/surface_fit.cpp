@@ -8,6 +8,7 @@
 #include <cmath>
 #include <glm/trigonometric.hpp>
 #include <limits>
+#include <numeric>
 
 #include "dermis/core/hash.h"
 #include "dermis/core/parallel.h"
@@ -386,9 +387,6 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
     if (!s.ok()) return s.WithContext(where);
     AdaptiveDisplacementReport& d = rep.displacement_fit;
     if (!input.check_normals.empty()) d.check_points = static_cast<std::int64_t>(check_fits.size());
-    // The fit's levels before the seams change them (the report's count), for the shading rule.
-    const BsplineDisplacementData levels_fitted =
-        input.check_normals.empty() ? BsplineDisplacementData() : data;
     if (!seam.empty()) {
       s = ZeroDisplacementOnSeams(domain, seam, &data);
       if (!s.ok()) return s.WithContext(where);
@@ -408,8 +406,9 @@ Status FitSurface(const FitInput& input, const FitOptions& options, FittedSurfac
         d.levels = keep;
         d.stopped_by = "check normals";
         d.level_nodes.resize(std::min(d.level_nodes.size(), static_cast<std::size_t>(keep)));
+        // Each kept level stores one coefficient per active node (before the seams add any).
         d.coefficients =
-            static_cast<std::int64_t>(TruncateBsplineLevels(levels_fitted, keep).values.size());
+            std::accumulate(d.level_nodes.begin(), d.level_nodes.end(), std::int64_t{0});
         fitted.displacement = BsplineDisplacement::Create(
             TruncateBsplineLevels(fitted.displacement->data(), keep), domain.num_vertices(), &s);
         if (!s.ok()) return s.WithContext(where);
