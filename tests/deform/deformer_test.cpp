@@ -740,6 +740,58 @@ TEST_CASE("sweep: a vertex of two chains blends their frames without collapse") 
   }
 }
 
+TEST_CASE("sweep: the posed position is continuous in the weights, with no snap at a threshold") {
+  // The two chains of the test above; one vertex beside their common point, its weight moved
+  // from chain 0 -> 1 to chain 2 -> 3 in steps of 1/1000 while chain 2 twists 90 degrees and
+  // bends. Painted weights vary from vertex to vertex by about that much (CesiumMan's head:
+  // 0 to 0.17 on its neck); a binding that switches treatment at a share (the snap to a
+  // single chain at 0.95, binding a chain from 0.05) stepped its posed surface by the share
+  // left behind times the distance between the chains' images of the vertex, about 100 times
+  // the step of LBS here.
+  SkinRig rig;
+  rig.parents = {-1, 0, -1, 2};
+  rig.bind = {glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), {4, 0, 0}),
+              glm::translate(glm::dmat4(1.0), {4, 0, 0}),
+              glm::translate(glm::dmat4(1.0), {8, 0, 0})};
+  const int steps = 1000;
+  std::vector<Vec3> x;
+  std::vector<VertexWeights> w;
+  for (int k = 0; k <= steps; ++k) {
+    x.push_back({4.5, 1.0, 0.25});
+    w.push_back(Two(0, 2, static_cast<float>(k) / steps));
+  }
+  // Chain 0 -> 1 stays; chain 2 -> 3 bends 60 degrees about z at x = 4 and twists 90 about x.
+  const glm::dmat4 about = glm::translate(glm::dmat4(1.0), {4, 0, 0}) *
+                           glm::rotate(glm::dmat4(1.0), kPi / 3.0, {0, 0, 1}) *
+                           glm::rotate(glm::dmat4(1.0), kPi / 2.0, {1, 0, 0}) *
+                           glm::translate(glm::dmat4(1.0), {-4, 0, 0});
+  const std::vector<glm::dmat4> palette = {glm::dmat4(1.0), glm::dmat4(1.0), about, about};
+  for (const bool volume : {true, false}) {
+    INFO("volume fix " << volume);
+    SweepOptions o;
+    o.preserve_volume = volume;
+    std::unique_ptr<Deformer> sweep;
+    REQUIRE(MakeSweepDeformer(rig, x.data(), nullptr, w.data(), x.size(), o, &sweep).ok());
+    REQUIRE(sweep->SetPose(palette.data()).ok());
+    std::vector<Vec3> s(x.size());
+    sweep->Deform(0, s.size(), s.data(), nullptr);
+    // The two ends are the chains' own images of the vertex.
+    const double apart = glm::length(s.back() - s.front());
+    REQUIRE(apart > 1.0);
+    double worst = 0.0;
+    int at = 0;
+    for (int k = 0; k < steps; ++k) {
+      const double step =
+          glm::length(s[static_cast<std::size_t>(k) + 1] - s[static_cast<std::size_t>(k)]);
+      if (step > worst) worst = step, at = k;
+    }
+    INFO("largest step " << worst << " at weight " << static_cast<double>(at) / steps << ", ends "
+                         << apart << " apart");
+    // LBS moves it by apart / steps per step; the ramps steepen that at most a few times.
+    CHECK(worst < 4.0 * apart / steps);
+  }
+}
+
 TEST_CASE("sweep: the volume fix never shrinks a joint straightened from its rest bend") {
   // An elbow bent 40 degrees at rest (A-pose): a tube of radius 1 around the bent bones, rings
   // of 8 every 0.25 of arc length, smoothstep weights over 3 <= s <= 5. Straightened, the

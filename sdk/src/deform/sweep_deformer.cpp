@@ -49,6 +49,12 @@ constexpr double kMinBend = 1e-7;  // radians; below this a joint is straight
 constexpr int kBumpBins = 32;
 constexpr int kFoldSamples = 4;
 
+// 0 for x <= 0, 1 for x >= 1, 3x^2 - 2x^3 between: the binding's ramps.
+double SmoothStep(double x) {
+  const double t = std::clamp(x, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
 /// One evaluated pose of a chain's trajectory (rest or posed).
 struct ChainGeom {
   std::vector<Vec3> p;         // joint positions, n + 1
@@ -546,7 +552,7 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
   if (o.stations_per_bone < 1 || !(o.blend_radius_factor >= 0.0) ||
       !(o.max_blend_fraction >= 0.0 && o.max_blend_fraction < 0.5) ||
       !(o.volume_width_factor >= 1.0) || !(o.single_chain_threshold <= 1.0) ||
-      !(o.blend_threshold >= 0.0)) {
+      !(o.single_chain_ramp >= 0.0 && o.single_chain_ramp <= 1.0) || !(o.blend_threshold >= 0.0)) {
     return Status::InvalidInput("sweep: options out of range");
   }
   std::vector<SweepChain> chains;
@@ -674,10 +680,30 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
     int best = -1;
     for (int q = 0; q < used; ++q)
       if (best < 0 || share[q] > share[best]) best = q;
-    // One chain with the whole weight (or at least single_chain_threshold of it): the sweep's
-    // point alone. Otherwise every chain holding more than blend_threshold is bound and blended.
-    const bool single =
-        best >= 0 && ((used == 1 && !outside) || share[best] >= o.single_chain_threshold);
+    // The binding is continuous in the weights (docs/deformation.md, "Binding"): painted
+    // weights vary from vertex to vertex, and a snap between two treatments at a threshold
+    // turns that noise into steps of the posed surface (CesiumMan's head on its neck chain).
+    // - Everything but the strongest chain is scaled by `others`: 1 up to a best share of
+    //   single_chain_threshold - single_chain_ramp, fading to 0 at single_chain_threshold,
+    //   from where the vertex is the sweep's point alone, as before the ramp.
+    // - A chain's share s is bound to the chain by rho(s): 0 up to blend_threshold, 1 from
+    //   twice it on; the rest of its weight follows its joints' own rigid transforms (loose).
+    double others = 1.0;
+    if (best >= 0 && !(used == 1 && !outside)) {
+      const double st = o.single_chain_threshold, ramp = o.single_chain_ramp;
+      others = ramp > 0.0 ? 1.0 - SmoothStep((share[best] - (st - ramp)) / ramp)
+                          : (share[best] >= st ? 0.0 : 1.0);
+    }
+    const bool single = best >= 0 && ((used == 1 && !outside) || !(others > 0.0));
+    double rho[4] = {0, 0, 0, 0};
+    for (int q = 0; q < used; ++q) {
+      const double bt = o.blend_threshold;
+      if (single) {
+        rho[q] = q == best ? 1.0 : 0.0;
+      } else {
+        rho[q] = bt > 0.0 ? SmoothStep((share[q] - bt) / bt) : (share[q] > 0.0 ? 1.0 : 0.0);
+      }
+    }
     LooseWeights& loose = loose_[v];
     int loose_used = 0;
     for (int k = 0; k < 4 && !single; ++k) {
@@ -685,16 +711,19 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
       const int ci = chain_of_[iw.joints[k]];
       int slot = 0;
       while (slot < used && ids[slot] != ci) ++slot;
-      if (ci >= 0 && share[slot] > o.blend_threshold) continue;
+      const double scaled = (ci >= 0 && slot == best) ? w[k] : others * w[k];
+      const double part = ci >= 0 ? (1.0 - rho[slot]) * scaled : scaled;
+      if (!(part > 0.0)) continue;
       loose.joints[loose_used] = iw.joints[k];
-      loose.weights[loose_used] = w[k];
+      loose.weights[loose_used] = part;
       ++loose_used;
     }
     double total = 0.0;
     for (int k = 0; k < loose_used; ++k) total += loose.weights[k];
     for (int q = 0; q < used; ++q) {
-      if (single ? q != best : share[q] <= o.blend_threshold) continue;
-      const double weight = single ? 1.0 : share[q];
+      if (!(rho[q] > 0.0)) continue;
+      const double weight = single ? 1.0 : rho[q] * share[q] * (q == best ? 1.0 : others);
+      if (!(weight > 0.0)) continue;
       total += weight;
       const Chain& c = chains_[static_cast<std::size_t>(ids[q])];
       // Allowed arc-length ranges: the bones this chain's joints weight the vertex to.

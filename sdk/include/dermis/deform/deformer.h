@@ -168,7 +168,14 @@ struct SweepOptions {
   /// A vertex is bound to a single chain when that chain holds at least this share of its
   /// weight; otherwise to each chain holding more than blend_threshold, their frames blended as
   /// dual quaternions with the joints of the smaller shares (by their own rigid transforms).
+  /// The binding is continuous in the weights, so that noise in painted weights does not step
+  /// the posed surface (docs/deformation.md, "Binding"): below single_chain_threshold the
+  /// other chains and joints fade in over single_chain_ramp of the strongest chain's share
+  /// (smoothstep; 0: a snap at the threshold, the binding before 2026-12-08), and a chain's
+  /// share is bound to its sweep from blend_threshold on, fully from twice it (the rest follows
+  /// its joints' rigid transforms).
   double single_chain_threshold = 0.95;
+  double single_chain_ramp = 0.1;
   double blend_threshold = 0.05;
 };
 
