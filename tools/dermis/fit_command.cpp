@@ -67,6 +67,7 @@ struct FitArgs {
   double surface_gap = CharacterFitOptions{}.surface_gap;
   double check_points = CharacterFitOptions{}.check_points;
   bool no_check_shading = false;
+  int skin_smoothing = CharacterFitOptions{}.skin_smoothing;
   double low_poly_crease_angle = CharacterFitOptions{}.low_poly_crease_angle;
   bool refit = false;
   // Options given on the command line that only one kind of input takes (set at parse time):
@@ -286,6 +287,7 @@ Json CharacterReportJson(const FitArgs& a, const CharacterFitOptions& options, c
   options_json["surface-gap"] = options.surface_gap;
   options_json["check-points"] = options.check_points;
   options_json["no-check-shading"] = !options.check_shading;
+  options_json["skin-smoothing"] = options.skin_smoothing;
   options_json["refit"] = a.refit;
   Json j;
   StartReport(&j, "dermis.fit-character/1", std::move(options_json));
@@ -362,6 +364,7 @@ int RunFitCharacter(const FitArgs& a) {
   options.surface_gap = a.surface_gap;
   options.check_points = a.check_points;
   options.check_shading = !a.no_check_shading;
+  options.skin_smoothing = a.skin_smoothing;
   ApplyDisplacementArgs(a, &options.fit.displacement);
   if (a.control_fit >= 0) options.fit.control_fit_iterations = a.control_fit;
   options.fit.control_fit_clean_iterations = a.clean_rounds;
@@ -746,6 +749,14 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
                 "default, where a part has them, the trailing displacement levels that turn the "
                 "surface's normals away from them are dropped, and a denser part gets check "
                 "points for that alone; docs/characters.md, \"Levels checked by the shading\")");
+  cmd->add_option("--skin-smoothing", args->skin_smoothing,
+                  "Characters: steps that smooth the control vertices' skin weights over the "
+                  "control mesh, each half way to the neighbours' mean, so that weights painted "
+                  "to change across one edge do not ripple the posed surface (0: the weights as "
+                  "transferred from the source; docs/characters.md, \"Skin weights smoothed on "
+                  "the control mesh\")")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
   cmd->add_flag("--refit", args->refit,
                 "Characters: fit again even if the glTF carries an embedded Dermis surface");
   cmd->add_option("--report", args->report, "Write a JSON report of errors and timings");
@@ -766,7 +777,7 @@ void AddFitCommand(CLI::App* app, std::function<int()>* run) {
         for (const char* name :
              {"--control-ratio", "--shading-shape", "--shading-max-move", "--crease-smoothing",
               "--vertex-weight", "--crease-support", "--input-quads", "--low-poly-crease-angle",
-              "--surface-gap", "--check-points"}) {
+              "--surface-gap", "--check-points", "--skin-smoothing"}) {
           if (cmd->count(name) > 0) args->character_only.push_back(name);
         }
         if (args->refit) args->character_only.push_back("--refit");  // --refit=false is fine

@@ -26,6 +26,7 @@
 #include "dermis/offline/geometry/shading_surface.h"
 #include "dermis/offline/geometry/triangle_distance.h"
 #include "dermis/surface/surface_evaluator.h"
+#include "skin_smoothing.h"
 #include "surface_gap_points.h"
 
 namespace dermis {
@@ -723,9 +724,10 @@ std::vector<VertexBinding> VertexParameters(const DisplacedSurface& surf,
   return param;
 }
 
-/// Skin weights of a part's control vertices from the dense mesh's nearest surface point.
+/// Skin weights of a part's control vertices from the dense mesh's nearest surface point,
+/// then `smoothing` umbrella steps over the control mesh (CharacterFitOptions::skin_smoothing).
 void TransferSkin(const AssetMesh& mesh, const WeldedMesh& w, const Components& components,
-                  std::size_t c, const ComponentMesh& cm, CharacterPart* part) {
+                  std::size_t c, const ComponentMesh& cm, int smoothing, CharacterPart* part) {
   TriangleDistanceTree tree;
   std::vector<std::uint32_t> tris;
   for (std::size_t t : components.triangles[c]) {
@@ -751,6 +753,8 @@ void TransferSkin(const AssetMesh& mesh, const WeldedMesh& w, const Components& 
     BlendInfluences(influences[tris[t]], influences[tris[t + 1]], influences[tris[t + 2]],
                     cp.barycentric, &part->control_joints[v], &part->control_weights[v]);
   }
+  character::SmoothSkinWeights(surf.domain->topology(), surf.rest_positions, smoothing, 0.5,
+                               &part->control_joints, &part->control_weights);
 }
 
 /// |D(z_b) - p|: the distance from p to the surface point of binding b.
@@ -809,6 +813,10 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
   if (!(options.check_points >= 0.0 && options.check_points <= 64.0)) {
     return Status::InvalidInput("character fit: check_points must be in [0, 64] (0: none), not " +
                                 std::to_string(options.check_points));
+  }
+  if (options.skin_smoothing < 0 || options.skin_smoothing > 64) {
+    return Status::InvalidInput("character fit: skin_smoothing must be in [0, 64] (0: off), not " +
+                                std::to_string(options.skin_smoothing));
   }
   if (!(options.surface_gap >= 0.0 && options.surface_gap < 1.0)) {
     return Status::InvalidInput("character fit: surface_gap must be in [0, 1) (0: off), not " +
@@ -945,7 +953,9 @@ Status FitCharacter(const Asset& asset, const CharacterFitOptions& options, Char
           ++rep.vertices_bound;
         }
       }
-      if (skin != kInvalidIndex) TransferSkin(mesh, w, components, c, cm, &part);
+      if (skin != kInvalidIndex) {
+        TransferSkin(mesh, w, components, c, cm, options.skin_smoothing, &part);
+      }
       part.fit = Summary(dense, fr, part_sum / static_cast<double>(cm.global.size()), part_max);
       rep.part_control_meshes.push_back(fr.control_mesh);
       std::string note;

@@ -159,6 +159,15 @@ struct CharacterFitOptions {
   /// (AdaptiveDisplacementOptions::check_shading_tolerance; docs/characters.md, "Levels
   /// checked by the shading"). false: the distance rule alone.
   bool check_shading = true;
+  /// Umbrella steps (each moving a vertex's weights half way to its neighbours' mean) that
+  /// smooth the control vertices' skin weights over the control mesh after their transfer from
+  /// the source (docs/characters.md, "Skin weights smoothed on the control mesh"). Painted
+  /// weights change across single edges, and the domain surface, which interpolates its posed
+  /// control vertices, turned such kinks into ripples (CesiumMan's flanks in its walk). The
+  /// cost: posed, the bound vertices leave the source's own skinning by up to 2.5 cm at
+  /// CesiumMan's armpits. In [0, 64]; 0: the transferred weights as they are (before
+  /// 2026-12-08).
+  int skin_smoothing = 2;
   /// In the same fits (a control mesh that keeps creases, or a part whose sharp edges are all
   /// shaded smooth) and when there are samples between the vertices, the weight of each source
   /// vertex against one sample in the displacement levels' least squares (FitInput::weights):
