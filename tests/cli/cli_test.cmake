@@ -170,6 +170,10 @@ expect_run(2 "--check-points: Value 65 not in range" ${DERMIS} fit ${WORK}/dense
            -o ${WORK}/bad_refit.dsurf --check-points 65)
 expect_run(2 "--no-check-shading applies to a character" ${DERMIS} fit ${WORK}/dense_torus.obj
            -o ${WORK}/bad_refit.dsurf --no-check-shading)
+expect_run(2 "--skin-smoothing applies to a character" ${DERMIS} fit ${WORK}/dense_torus.obj
+           -o ${WORK}/bad_refit.dsurf --skin-smoothing 1)
+expect_run(2 "--skin-smoothing: Value 65 not in range" ${DERMIS} fit ${WORK}/dense_torus.obj
+           -o ${WORK}/bad_refit.dsurf --skin-smoothing 65)
 # --shading-shape: 'auto' (the default) or a factor in [0, 1]; anything else is a usage error.
 string(FIND "${fit_help}" "--shading-shape TEXT=auto " at)
 if(at LESS 0)
@@ -336,7 +340,7 @@ expect_help_defaults("${report}" character)
 # The shading surface: chosen per part by default, and the report says which.
 foreach(key "\"shading-shape\": \"auto\"" "\"shading_shape\": " "\"shading_normal_deviation_deg\": "
             "\"flat_normal_deviation_deg\": " "\"low-poly-crease-angle\": 0.1" "\"crease_angle_deg\": "
-            "\"check-points\": 1" "\"no-check-shading\": false")
+            "\"check-points\": 1" "\"no-check-shading\": false" "\"skin-smoothing\": 2")
   string(FIND "${report}" "${key}" at)
   if(at LESS 0)
     message(FATAL_ERROR "skin.json has no ${key}:\n${report}")

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <initializer_list>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -746,8 +747,8 @@ TEST_CASE("sweep: the posed position is continuous in the weights, with no snap 
   // bends. Painted weights vary from vertex to vertex by about that much (CesiumMan's head:
   // 0 to 0.17 on its neck); a binding that switches treatment at a share (the snap to a
   // single chain at 0.95, binding a chain from 0.05) stepped its posed surface by the share
-  // left behind times the distance between the chains' images of the vertex, about 100 times
-  // the step of LBS here.
+  // left behind times the distance between the chains' images of the vertex, 51 times the
+  // step of LBS here.
   SkinRig rig;
   rig.parents = {-1, 0, -1, 2};
   rig.bind = {glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), {4, 0, 0}),
@@ -789,6 +790,75 @@ TEST_CASE("sweep: the posed position is continuous in the weights, with no snap 
                          << apart << " apart");
     // LBS moves it by apart / steps per step; the ramps steepen that at most a few times.
     CHECK(worst < 4.0 * apart / steps);
+  }
+}
+
+TEST_CASE("sweep: a small chain's share binds to its sweep continuously, and bad ramps refused") {
+  // Three chains from (4, 0, 0): 0 -> 1 along -x, 2 -> 3 along +x, 4 -> 5 along +y. A vertex
+  // beside the middle of the third bone keeps half its weight on chain 0 -> 1 (the strongest,
+  // so the single-chain fade never starts) while t of the other half moves from chain 2 -> 3
+  // to chain 4 -> 5, t from 0 to 0.2 in steps of 1/2000: the third chain's share crosses
+  // blend_threshold (0.05), where it went from its joint's rigid transform to the sweep's
+  // frame, which carries half the twist of joint 5 there.
+  SkinRig rig;
+  rig.parents = {-1, 0, -1, 2, -1, 4};
+  rig.bind = {
+      glm::translate(glm::dmat4(1.0), {4, 0, 0}), glm::translate(glm::dmat4(1.0), {0, 0, 0}),
+      glm::translate(glm::dmat4(1.0), {4, 0, 0}), glm::translate(glm::dmat4(1.0), {8, 0, 0}),
+      glm::translate(glm::dmat4(1.0), {4, 0, 0}), glm::translate(glm::dmat4(1.0), {4, 4, 0})};
+  const int steps = 400;
+  std::vector<Vec3> x;
+  std::vector<VertexWeights> w;
+  for (int k = 0; k <= steps; ++k) {
+    const float t = 0.2f * static_cast<float>(k) / steps;
+    x.push_back({4.3, 2.0, 0.2});
+    VertexWeights vw;
+    vw.joints = glm::u16vec4(0, 2, 4, 0);
+    vw.weights = glm::vec4(0.5f, 0.5f - t, t, 0.0f);
+    w.push_back(vw);
+  }
+  // Chain 2 -> 3 bends 30 degrees about z at (4, 0, 0); joint 5 twists 120 degrees about y.
+  const glm::dmat4 bend = glm::translate(glm::dmat4(1.0), {4, 0, 0}) *
+                          glm::rotate(glm::dmat4(1.0), kPi / 6.0, {0, 0, 1}) *
+                          glm::translate(glm::dmat4(1.0), {-4, 0, 0});
+  const glm::dmat4 twist = glm::translate(glm::dmat4(1.0), {4, 0, 0}) *
+                           glm::rotate(glm::dmat4(1.0), 2.0 * kPi / 3.0, {0, 1, 0}) *
+                           glm::translate(glm::dmat4(1.0), {-4, 0, 0});
+  const std::vector<glm::dmat4> palette = {
+      glm::dmat4(1.0), glm::dmat4(1.0), bend, bend, glm::dmat4(1.0), twist};
+  std::unique_ptr<Deformer> sweep;
+  REQUIRE(
+      MakeSweepDeformer(rig, x.data(), nullptr, w.data(), x.size(), SweepOptions{}, &sweep).ok());
+  REQUIRE(sweep->SetPose(palette.data()).ok());
+  std::vector<Vec3> s(x.size());
+  sweep->Deform(0, s.size(), s.data(), nullptr);
+  const double apart = glm::length(s.back() - s.front());
+  REQUIRE(apart > 0.05);
+  double worst = 0.0;
+  int at = 0;
+  for (int k = 0; k < steps; ++k) {
+    const double step =
+        glm::length(s[static_cast<std::size_t>(k) + 1] - s[static_cast<std::size_t>(k)]);
+    if (step > worst) worst = step, at = k;
+  }
+  INFO("largest step " << worst << " at t " << 0.2 * at / steps << ", ends " << apart << " apart");
+  CHECK(worst < 4.0 * apart / steps);
+  // Ramps that would make the binding jump are refused, with their ranges named.
+  for (const auto& bad :
+       std::vector<std::array<double, 3>>{{0.95, 0.5, 0.05},
+                                          {0.5, 0.0, 0.05},
+                                          {0.95, -0.1, 0.05},
+                                          {0.95, 0.1, 0.5},
+                                          {0.95, 0.1, std::nan("")},
+                                          {0.95, 0.1, std::numeric_limits<double>::infinity()}}) {
+    SweepOptions o;
+    o.single_chain_threshold = bad[0];
+    o.single_chain_ramp = bad[1];
+    o.blend_threshold = bad[2];
+    INFO(bad[0] << " " << bad[1] << " " << bad[2]);
+    const Status st = MakeSweepDeformer(rig, x.data(), nullptr, w.data(), x.size(), o, &sweep);
+    CHECK(!st.ok());
+    CHECK(st.message().find("single_chain_ramp") != std::string::npos);
   }
 }
 

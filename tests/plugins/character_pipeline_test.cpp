@@ -384,9 +384,10 @@ TEST_CASE(
   CHECK(ra.e1_max <= 1.05 * rb.e1_max);  // the bound export no worse
   // The control vertices' skin weights come from the source at their positions after the fit
   // (TransferSkin): the moved vertices keep their weights, not those of a nearby stretch of the
-  // part (a finger, the other thigh). Measured: at most 0.17 of weight moves between joints
-  // (half the L1 distance), 0.004 on average; the 11 of 2,058 vertices whose largest weight
-  // changes joint are ties within 0.02.
+  // part (a finger, the other thigh). Measured (on the remesh, before the weights were smoothed
+  // over the control mesh): at most 0.17 of weight moves between joints (half the L1
+  // distance), 0.004 on average; the 11 of 2,058 vertices whose largest weight changes joint
+  // are ties within 0.02.
   const CharacterPart &pa = a.parts[0], &pb = b.parts[0];
   REQUIRE(pa.control_joints.size() == pb.control_joints.size());
   double worst = 0.0, sum = 0.0;
@@ -406,13 +407,12 @@ TEST_CASE(
   CHECK(mean < 0.02);
 }
 
-/// The integral of |mean curvature| over the rest pose's level-8 lod surface
-/// (AbsMeanCurvatureIntegral: (1/2) sum over its edges of |dihedral| x length, Cohen-Steiner
-/// and Morvan 2003; bench_fit's curvature ratio is this over the source's), its primitives'
-/// seam vertices welded on a grid of 1e-7 of `diagonal`. Every ripple or lump adds to it,
-/// though the check points never see the tessellation.
-// The integral of |mean curvature| over the level-8 lod surface, at rest (clip -1) or posed at
-// `time` seconds of `clip` by `deformer`.
+/// The integral of |mean curvature| over the level-8 lod surface, at rest (clip -1) or posed at
+/// `time` seconds of `clip` by `deformer` (AbsMeanCurvatureIntegral: (1/2) sum over its edges
+/// of |dihedral| x length, Cohen-Steiner and Morvan 2003; bench_fit's curvature ratio is this
+/// over the source's at rest), its primitives' seam vertices welded on a grid of 1e-7 of
+/// `diagonal`. Every ripple or lump adds to it, though the check points never see the
+/// tessellation.
 double LodAbsMeanCurvature(const Character& ch, double diagonal, int clip = -1, double time = 0.0,
                            DeformerKind deformer = DeformerKind::kSweep) {
   CharacterPoseOptions po;
@@ -627,7 +627,6 @@ TEST_CASE("pipeline: CesiumMan, modelled in quads, gets its own quads as its con
   CHECK(ra.e1_max < 0.5 * rb.e1_max);
 }
 
-}  // namespace
 TEST_CASE("pipeline: CesiumMan's skin weights smoothed on its control mesh keep its walk unrippled",
           "[data][heavy]") {
   // The Khronos asset itself (docs/characters.md, "Skin weights smoothed on the control mesh"):
@@ -659,5 +658,7 @@ TEST_CASE("pipeline: CesiumMan's skin weights smoothed on its control mesh keep 
     }
   }
 }
+
+}  // namespace
 
 }  // namespace dermis

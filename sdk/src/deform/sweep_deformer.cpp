@@ -551,9 +551,18 @@ Status SweepDeformer::Build(const SkinRig& rig, const Vec3* rest, const Vec3* no
   has_normals_ = normals != nullptr;
   if (o.stations_per_bone < 1 || !(o.blend_radius_factor >= 0.0) ||
       !(o.max_blend_fraction >= 0.0 && o.max_blend_fraction < 0.5) ||
-      !(o.volume_width_factor >= 1.0) || !(o.single_chain_threshold <= 1.0) ||
-      !(o.single_chain_ramp >= 0.0 && o.single_chain_ramp <= 1.0) || !(o.blend_threshold >= 0.0)) {
+      !(o.volume_width_factor >= 1.0)) {
     return Status::InvalidInput("sweep: options out of range");
+  }
+  // The binding's ramps are continuous only in these ranges (deformer.h).
+  if (!(o.single_chain_threshold > 0.5 && o.single_chain_threshold <= 1.0) ||
+      !(o.single_chain_ramp >= 0.0 && o.single_chain_ramp <= o.single_chain_threshold - 0.5) ||
+      !(o.blend_threshold >= 0.0 &&
+        2.0 * o.blend_threshold <= o.single_chain_threshold - o.single_chain_ramp)) {
+    return Status::InvalidInput(
+        "sweep: binding options out of range: single_chain_threshold must be in (0.5, 1], "
+        "single_chain_ramp in [0, single_chain_threshold - 0.5] and blend_threshold in [0, "
+        "(single_chain_threshold - single_chain_ramp) / 2]");
   }
   std::vector<SweepChain> chains;
   const Status s = BuildSweepChains(rig, rest, influences, count, o, &chains);

@@ -562,6 +562,18 @@ TEST_CASE("character: a surface gap out of range is refused with its name") {
   for (const ControlMeshInfo& m : report.part_control_meshes) CHECK(m.surface_gap_points == 0);
 }
 
+TEST_CASE("character: skin smoothing out of range is refused with its name") {
+  const Asset box = LowPolyBox();
+  for (const int v : {-1, 65}) {
+    CharacterFitOptions bad;
+    bad.skin_smoothing = v;
+    Character c;
+    const Status s = FitCharacter(box, bad, &c, nullptr);
+    CHECK(s.code() == StatusCode::kInvalidInput);
+    CHECK(s.message().find("skin_smoothing") != std::string::npos);
+  }
+}
+
 TEST_CASE("character: check points out of range are refused with their name") {
   const Asset box = LowPolyBox();
   for (const double v : {-0.5, 64.5, std::numeric_limits<double>::quiet_NaN(),

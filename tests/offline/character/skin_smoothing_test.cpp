@@ -2,7 +2,7 @@
 // Smoothing of control-vertex skin weights (sdk/src/offline/character/skin_smoothing.h):
 // one umbrella step against hand-computed values, a crease cut open keeps its two sides equal
 // and gives what the uncut mesh gives, the four largest influences kept, nothing from zero
-// steps or mismatched sizes.
+// steps, a vertex without weights left alone.
 #include "offline/character/skin_smoothing.h"
 
 #include <catch2/catch.hpp>
@@ -136,11 +136,27 @@ TEST_CASE("skin smoothing: the four largest influences are kept, ties to the sma
   CHECK(w.joints[0] == glm::u16vec4(0, 1, 2, 3));
   CHECK(w.weights[0][0] == Approx(0.625).epsilon(1e-6));
   CHECK(w.weights[0][3] == Approx(0.125).epsilon(1e-6));
-  // Mismatched sizes leave the weights alone.
-  Weights before = w;
-  std::vector<Vec3> short_rest(rest.begin(), rest.begin() + 3);
-  character::SmoothSkinWeights(topo, short_rest, 1, 0.5, &w.joints, &w.weights);
-  CHECK(w.weights == before.weights);
+}
+
+TEST_CASE("skin smoothing: a vertex without weights stays so and dilutes no neighbour") {
+  std::vector<Vec3> rest;
+  std::vector<Index> quads;
+  AddGrid(0, 4, 4, &rest, &quads);
+  MeshTopology topo;
+  REQUIRE(MeshTopology::BuildQuads(static_cast<Index>(rest.size()), quads, &topo).ok());
+  Weights w{std::vector<glm::u16vec4>(rest.size()), std::vector<glm::vec4>(rest.size())};
+  for (std::size_t v = 0; v < rest.size(); ++v) Set(&w, v, 7);
+  const std::size_t hole = 2 * 5 + 2;  // the middle vertex
+  w.weights[hole] = glm::vec4(0.0f);
+  // Weights not summing to 1 are normalised first.
+  w.weights[0] = glm::vec4(0.25f, 0.0f, 0.0f, 0.0f);
+  character::SmoothSkinWeights(topo, rest, 3, 0.5, &w.joints, &w.weights);
+  CHECK(w.weights[hole] == glm::vec4(0.0f));
+  for (std::size_t v = 0; v < rest.size(); ++v) {
+    if (v == hole) continue;
+    CHECK(w.joints[v][0] == 7);
+    CHECK(w.weights[v][0] == 1.0f);
+  }
 }
 
 }  // namespace dermis

@@ -169,13 +169,19 @@ struct SweepOptions {
   /// weight; otherwise to each chain holding more than blend_threshold, their frames blended as
   /// dual quaternions with the joints of the smaller shares (by their own rigid transforms).
   /// The binding is continuous in the weights, so that noise in painted weights does not step
-  /// the posed surface (docs/deformation.md, "Binding"): below single_chain_threshold the
-  /// other chains and joints fade in over single_chain_ramp of the strongest chain's share
-  /// (smoothstep; 0: a snap at the threshold, the binding before 2026-12-08), and a chain's
-  /// share is bound to its sweep from blend_threshold on, fully from twice it (the rest follows
-  /// its joints' rigid transforms).
+  /// the posed surface (docs/deformation.md, "Binding"; the ramps below). In (0.5, 1].
   double single_chain_threshold = 0.95;
+  /// Below single_chain_threshold the other chains and joints fade in (smoothstep) over this
+  /// much of the strongest chain's share: their weights are scaled by 1 at a share of
+  /// single_chain_threshold - single_chain_ramp or less, by 0 from single_chain_threshold on.
+  /// 0: a snap at the threshold. In [0, single_chain_threshold - 0.5], so that the strongest
+  /// chain, which the fade spares, cannot change while it is under way.
   double single_chain_ramp = 0.1;
+  /// A chain's share is bound to its sweep by smoothstep((share - blend_threshold) /
+  /// blend_threshold): not below blend_threshold, fully from twice it; the rest of the share
+  /// follows its joints' own rigid transforms. In [0, (single_chain_threshold -
+  /// single_chain_ramp) / 2], so that a vertex reaching the single-chain share is fully bound
+  /// to that chain already. (Before 2026-12-08 both rules were snaps at their thresholds.)
   double blend_threshold = 0.05;
 };
 

@@ -8,6 +8,8 @@
 #include "skin_smoothing.h"
 
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <cstdint>
 #include <cstring>
 #include <numeric>
@@ -38,7 +40,16 @@ Sparse Combine(const Sparse& a, double sa, const Sparse& b, double sb) {
   return out;
 }
 
-bool SamePosition(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof(Vec3)) == 0; }
+// The bit patterns of a point, so that grouping and sorting agree (+0 and -0 differ, and a
+// NaN compares like any other pattern).
+std::array<std::uint64_t, 3> Bits(const Vec3& p) {
+  std::array<std::uint64_t, 3> b{};
+  static_assert(sizeof(p.x) == sizeof(std::uint64_t), "double coordinates");
+  std::memcpy(&b[0], &p.x, sizeof(std::uint64_t));
+  std::memcpy(&b[1], &p.y, sizeof(std::uint64_t));
+  std::memcpy(&b[2], &p.z, sizeof(std::uint64_t));
+  return b;
+}
 
 }  // namespace
 
@@ -46,27 +57,27 @@ void SmoothSkinWeights(const MeshTopology& topology, const std::vector<Vec3>& re
                        double step, std::vector<glm::u16vec4>* joints,
                        std::vector<glm::vec4>* weights) {
   const std::size_t n = rest.size();
+  assert(joints->size() == n && weights->size() == n &&
+         static_cast<std::size_t>(topology.num_vertices()) == n);
   if (iterations <= 0 || !(step > 0.0) || joints->size() != n || weights->size() != n ||
       static_cast<std::size_t>(topology.num_vertices()) != n) {
     return;
   }
   step = std::min(step, 1.0);
-  // Groups of vertices at the same rest position, numbered by their first vertex.
+  // Groups of vertices at bitwise the same rest position, numbered in the order of their
+  // positions' bit patterns.
+  std::vector<std::array<std::uint64_t, 3>> bits(n);
+  for (std::size_t v = 0; v < n; ++v) bits[v] = Bits(rest[v]);
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
-  auto less = [&](std::size_t a, std::size_t b) {
-    const Vec3 &p = rest[a], &q = rest[b];
-    if (p.x != q.x) return p.x < q.x;
-    if (p.y != q.y) return p.y < q.y;
-    if (p.z != q.z) return p.z < q.z;
-    return a < b;
-  };
-  std::sort(order.begin(), order.end(), less);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return bits[a] != bits[b] ? bits[a] < bits[b] : a < b;
+  });
   std::vector<std::size_t> group(n);
   std::size_t groups = 0;
   std::vector<std::size_t> first;  // a group's vertices start at first[g] in `order`
   for (std::size_t k = 0; k < n; ++k) {
-    if (k == 0 || !SamePosition(rest[order[k]], rest[order[k - 1]])) {
+    if (k == 0 || bits[order[k]] != bits[order[k - 1]]) {
       first.push_back(k);
       ++groups;
     }
@@ -89,44 +100,57 @@ void SmoothSkinWeights(const MeshTopology& topology, const std::vector<Vec3>& re
     std::sort(v.begin(), v.end());
     v.erase(std::unique(v.begin(), v.end()), v.end());
   }
-  // Each group's weights: the mean over its vertices (equal for a cut crease's two sides).
+  // Each group's weights: the mean of its vertices' normalised weights (equal for a cut
+  // crease's two sides); a vertex without weights counts for nothing, a group without any
+  // stays without (it is not skinned, and its neighbours' means leave it out).
   std::vector<Sparse> w(groups), next(groups);
   for (std::size_t g = 0; g < groups; ++g) {
-    const double members = static_cast<double>(first[g + 1] - first[g]);
+    double members = 0.0;
     for (std::size_t k = first[g]; k < first[g + 1]; ++k) {
       Sparse one;
+      double total = 0.0;
       for (int c = 0; c < 4; ++c) {
         const double x = static_cast<double>((*weights)[order[k]][c]);
-        if (x > 0.0) one.emplace_back((*joints)[order[k]][c], x / members);
+        if (x > 0.0) one.emplace_back((*joints)[order[k]][c], x), total += x;
       }
+      if (!(total > 0.0)) continue;
       std::sort(one.begin(), one.end());
       // Merge duplicate joints of one vertex.
       Sparse merged;
       for (const auto& e : one) {
         if (!merged.empty() && merged.back().first == e.first) {
-          merged.back().second += e.second;
+          merged.back().second += e.second / total;
         } else {
-          merged.push_back(e);
+          merged.emplace_back(e.first, e.second / total);
         }
       }
       w[g] = Combine(w[g], 1.0, merged, 1.0);
+      members += 1.0;
     }
+    for (auto& e : w[g]) e.second /= std::max(members, 1.0);
   }
   for (int it = 0; it < iterations; ++it) {
     for (std::size_t g = 0; g < groups; ++g) {
-      if (nbr[g].empty()) {
+      Sparse sum;
+      double count = 0.0;
+      for (std::size_t h : nbr[g]) {
+        if (w[h].empty()) continue;
+        sum = Combine(sum, 1.0, w[h], 1.0);
+        count += 1.0;
+      }
+      if (w[g].empty() || count == 0.0) {
         next[g] = w[g];
         continue;
       }
-      Sparse mean;
-      const double share = 1.0 / static_cast<double>(nbr[g].size());
-      for (std::size_t h : nbr[g]) mean = Combine(mean, 1.0, w[h], share);
-      next[g] = Combine(w[g], 1.0 - step, mean, step);
+      next[g] = Combine(w[g], 1.0 - step, sum, step / count);
     }
     w.swap(next);
   }
   for (std::size_t v = 0; v < n; ++v) {
-    Sparse s = w[group[v]];
+    Sparse s;
+    for (const auto& e : w[group[v]]) {
+      if (e.second > 0.0) s.push_back(e);
+    }
     std::stable_sort(s.begin(), s.end(), [](const auto& a, const auto& b) {
       return a.second != b.second ? a.second > b.second : a.first < b.first;
     });
