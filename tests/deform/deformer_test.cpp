@@ -696,14 +696,30 @@ TEST_CASE("sweep: a skinned leaf bends and twists exactly as an inner joint") {
   CHECK(glm::length(a[ring + 2] - a[ring + 6]) > 2.02);
 }
 
-TEST_CASE("sweep: a vertex of two chains blends their frames without collapse") {
-  // Two separate chains: 0 -> 1 along x to x = 4 and 2 -> 3 from x = 4 to 8 (two roots). A ring
-  // of vertices at x = 4, half on joint 0 and half on joint 2; joint 2 (and 3) twist about x.
+// Two separate chains (two roots): 0 -> 1 along x from 0 to 4 and 2 -> 3 from x = 4 to 8.
+SkinRig TwoChains() {
   SkinRig rig;
   rig.parents = {-1, 0, -1, 2};
   rig.bind = {glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), {4, 0, 0}),
               glm::translate(glm::dmat4(1.0), {4, 0, 0}),
               glm::translate(glm::dmat4(1.0), {8, 0, 0})};
+  return rig;
+}
+
+// The largest move between consecutive points of `s`, and where (its first index).
+double LargestStep(const std::vector<Vec3>& s, int* at) {
+  double worst = 0.0;
+  for (std::size_t k = 0; k + 1 < s.size(); ++k) {
+    const double step = glm::length(s[k + 1] - s[k]);
+    if (step > worst) worst = step, *at = static_cast<int>(k);
+  }
+  return worst;
+}
+
+TEST_CASE("sweep: a vertex of two chains blends their frames without collapse") {
+  // Two separate chains: 0 -> 1 along x to x = 4 and 2 -> 3 from x = 4 to 8 (two roots). A ring
+  // of vertices at x = 4, half on joint 0 and half on joint 2; joint 2 (and 3) twist about x.
+  const SkinRig rig = TwoChains();
   std::vector<Vec3> x;
   std::vector<VertexWeights> w;
   for (int k = 0; k < 8; ++k) {
@@ -749,11 +765,7 @@ TEST_CASE("sweep: the posed position is continuous in the weights, with no snap 
   // single chain at 0.95, binding a chain from 0.05) stepped its posed surface by the share
   // left behind times the distance between the chains' images of the vertex, 51 times the
   // step of LBS here.
-  SkinRig rig;
-  rig.parents = {-1, 0, -1, 2};
-  rig.bind = {glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), {4, 0, 0}),
-              glm::translate(glm::dmat4(1.0), {4, 0, 0}),
-              glm::translate(glm::dmat4(1.0), {8, 0, 0})};
+  const SkinRig rig = TwoChains();
   const int steps = 1000;
   std::vector<Vec3> x;
   std::vector<VertexWeights> w;
@@ -779,13 +791,8 @@ TEST_CASE("sweep: the posed position is continuous in the weights, with no snap 
     // The two ends are the chains' own images of the vertex.
     const double apart = glm::length(s.back() - s.front());
     REQUIRE(apart > 1.0);
-    double worst = 0.0;
     int at = 0;
-    for (int k = 0; k < steps; ++k) {
-      const double step =
-          glm::length(s[static_cast<std::size_t>(k) + 1] - s[static_cast<std::size_t>(k)]);
-      if (step > worst) worst = step, at = k;
-    }
+    const double worst = LargestStep(s, &at);
     INFO("largest step " << worst << " at weight " << static_cast<double>(at) / steps << ", ends "
                          << apart << " apart");
     // LBS moves it by apart / steps per step; the ramps steepen that at most a few times.
@@ -834,13 +841,8 @@ TEST_CASE("sweep: a small chain's share binds to its sweep continuously, and bad
   sweep->Deform(0, s.size(), s.data(), nullptr);
   const double apart = glm::length(s.back() - s.front());
   REQUIRE(apart > 0.05);
-  double worst = 0.0;
   int at = 0;
-  for (int k = 0; k < steps; ++k) {
-    const double step =
-        glm::length(s[static_cast<std::size_t>(k) + 1] - s[static_cast<std::size_t>(k)]);
-    if (step > worst) worst = step, at = k;
-  }
+  const double worst = LargestStep(s, &at);
   INFO("largest step " << worst << " at t " << 0.2 * at / steps << ", ends " << apart << " apart");
   CHECK(worst < 4.0 * apart / steps);
   // Ramps that would make the binding jump are refused, with their ranges named.
