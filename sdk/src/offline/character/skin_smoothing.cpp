@@ -15,6 +15,8 @@
 #include <numeric>
 #include <utility>
 
+#include "dermis/offline/character/skin_transfer.h"
+
 namespace dermis::character {
 namespace {
 
@@ -146,24 +148,14 @@ void SmoothSkinWeights(const MeshTopology& topology, const std::vector<Vec3>& re
     }
     w.swap(next);
   }
+  // Each vertex keeps its group's 4 largest influences, normalised (BlendInfluences' rule).
+  const std::vector<Influence> none;
   for (std::size_t v = 0; v < n; ++v) {
-    Sparse s;
+    std::vector<Influence> list;
     for (const auto& e : w[group[v]]) {
-      if (e.second > 0.0) s.push_back(e);
+      if (e.second > 0.0) list.push_back({e.first, static_cast<float>(e.second)});
     }
-    std::stable_sort(s.begin(), s.end(), [](const auto& a, const auto& b) {
-      return a.second != b.second ? a.second > b.second : a.first < b.first;
-    });
-    if (s.size() > 4) s.resize(4);
-    double total = 0.0;
-    for (const auto& e : s) total += e.second;
-    (*joints)[v] = glm::u16vec4(0);
-    (*weights)[v] = glm::vec4(0.0f);
-    if (!(total > 0.0)) continue;
-    for (std::size_t k = 0; k < s.size(); ++k) {
-      (*joints)[v][static_cast<int>(k)] = s[k].first;
-      (*weights)[v][static_cast<int>(k)] = static_cast<float>(s[k].second / total);
-    }
+    BlendInfluences(list, none, none, Vec3(1.0, 0.0, 0.0), &(*joints)[v], &(*weights)[v]);
   }
 }
 
